@@ -1,0 +1,32 @@
+// Verification problems with analytic answers, run by `spall verify` and by the tests.
+//
+// Each case builds a small model, runs it, and compares one computed quantity with its
+// analytic or published reference. Element/solver cases live in fe_cases.cc, contact cases in
+// contact_cases.cc.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace spallkit::verify {
+
+struct CaseResult {
+  std::string name;       // contains one of: patch, rotation, wave, cantilever, hertz, friction, energy
+  std::string quantity;   // what is compared, with units, e.g. "wave speed (m/s)"
+  double reference = 0.0;
+  double computed = 0.0;
+  double error = 0.0;      // relative error |computed - reference| / |reference| (or absolute, see note)
+  double tolerance = 0.0;
+  bool pass = false;
+  std::string note;        // e.g. "absolute error", mesh size
+};
+
+// Appends the element / solver cases (patch, rotation, wave, cantilever, ...).
+void AppendFeCases(std::vector<CaseResult>* results, const std::string& filter);
+// Appends the contact cases (hertz, friction, energy, ...).
+void AppendContactCases(std::vector<CaseResult>* results, const std::string& filter);
+
+// All cases whose name contains `filter` (empty: all).
+std::vector<CaseResult> RunVerification(const std::string& filter = "");
+
+}  // namespace spallkit::verify
