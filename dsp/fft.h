@@ -1,0 +1,77 @@
+// FFTW plans owned by small RAII objects.
+//
+// Each object makes its plan once, in the constructor, and reuses it for every call, so the
+// planner never runs in an inner loop. Plans are made with FFTW_ESTIMATE by default: planning a
+// 480,000-point transform with FFTW_MEASURE takes around a second, far more than it saves for a
+// record analysed once; pass PlanRigor::kMeasure for transforms reused thousands of times.
+// FFTW's planner is not thread-safe, so plan creation and destruction are serialised by a global
+// mutex; executing is thread-safe across objects but one object must not be used by two threads
+// at once (it owns its scratch buffers).
+//
+// Data are passed as raw pointers to std::complex<double>, which is layout-compatible with
+// fftw_complex. When the caller's arrays have the alignment the plan was made for, FFTW runs on
+// them directly (new-array execute); otherwise the data are copied through aligned scratch.
+// Transforms are unnormalised, as in FFTW: Forward then Inverse multiplies by n.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+namespace spallkit::dsp {
+
+enum class PlanRigor { kEstimate, kMeasure };
+
+// Real <-> half-complex transforms of size n: Forward maps n reals to n/2+1 complex bins
+// X_k = sum_t x_t exp(-2 pi i k t / n); Inverse maps n/2+1 bins back to n reals (times n).
+class RealFft {
+ public:
+  explicit RealFft(int n, PlanRigor rigor = PlanRigor::kEstimate);
+  ~RealFft();
+  RealFft(const RealFft&) = delete;
+  RealFft& operator=(const RealFft&) = delete;
+
+  int size() const { return n_; }
+  int bins() const { return n_ / 2 + 1; }
+
+  void Forward(const double* in, std::complex<double>* out);
+  // `in` is not modified (the c2r transform runs on a copy).
+  void Inverse(const std::complex<double>* in, double* out);
+
+ private:
+  int n_;
+  double* real_ = nullptr;                // fftw_malloc'ed, n reals
+  std::complex<double>* spec_ = nullptr;  // fftw_malloc'ed, n/2+1 bins
+  void* forward_ = nullptr;               // fftw_plan
+  void* inverse_ = nullptr;               // fftw_plan
+};
+
+// Complex transform of size n with the given sign: -1 (FFTW_FORWARD) or +1 (FFTW_BACKWARD).
+// With howmany > 1 it transforms howmany contiguous blocks of n (in[j*n .. j*n+n-1]) in one call,
+// which the kurtogram uses to do all nodes of a level at once.
+class ComplexFft {
+ public:
+  ComplexFft(int n, int sign, int howmany = 1, PlanRigor rigor = PlanRigor::kEstimate);
+  ~ComplexFft();
+  ComplexFft(const ComplexFft&) = delete;
+  ComplexFft& operator=(const ComplexFft&) = delete;
+
+  int size() const { return n_; }
+  int howmany() const { return howmany_; }
+  int sign() const { return sign_; }
+
+  // in and out hold size()*howmany() values; in == out (in place) is allowed.
+  void Execute(const std::complex<double>* in, std::complex<double>* out);
+
+ private:
+  int n_, sign_, howmany_;
+  std::complex<double>* in_ = nullptr;
+  std::complex<double>* out_ = nullptr;
+  void* plan_ = nullptr;          // out of place
+  void* plan_inplace_ = nullptr;  // made on first in-place call
+  PlanRigor rigor_;
+};
+
+// Smallest n' >= n whose only prime factors are 2, 3, 5 and 7 (sizes FFTW handles fastest).
+int FftFriendlySize(int n);
+
+}  // namespace spallkit::dsp
