@@ -1,0 +1,49 @@
+// A contact surface: the chain of boundary nodes of one body, as the contact search sees it.
+//
+// Built from a fe::BoundaryCurve (body on the LEFT of the walk). Segment s joins local nodes
+// segment_a[s] -> segment_b[s]; its outward normal is (b - a) rotated by -90 degrees, i.e.
+// (dy, -dx) / L. Every segment also carries the geometric part of the bulk-modulus penalty,
+// K * L^2 / A_elem * t, from the quad it bounds (set at build time from the reference mesh),
+// so that the pair only multiplies by its scale factor.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sim/fe/mesh.h"
+
+namespace spallkit::contact {
+
+struct ContactSurface {
+  std::string name;
+  bool closed = false;
+  std::vector<int> nodes;      // global node ids in chain order
+  std::vector<int> segment_a;  // local index (into nodes) of each segment's first node
+  std::vector<int> segment_b;  // local index of each segment's second node
+  // Per local node: the segment ending at it (-1 at an open start) and the one starting at it
+  // (-1 at an open end). Used for vertex normals where a node projects onto a corner.
+  std::vector<int> segment_before, segment_after;
+  // K * L^2 / A_elem * t per segment (N/m before the scale factor); empty if unknown (surfaces
+  // built from bare node chains), in which case only the mass and constant laws apply.
+  std::vector<double> bulk_stiffness;
+
+  int num_nodes() const { return static_cast<int>(nodes.size()); }
+  int num_segments() const { return static_cast<int>(segment_a.size()); }
+  double MeanSegmentLength(const double* x, const double* y) const;
+};
+
+// A surface from a bare chain of node ids (no stiffness data). Needs >= 2 nodes (>= 3 if closed).
+ContactSurface MakeSurfaceFromChain(const std::string& name,
+                                    const std::vector<int>& nodes,
+                                    bool closed);
+
+// A surface from mesh.curves[curve_name]. bulk_modulus is per part (size mesh.num_parts()) or a
+// single value for all parts; thickness is the section thickness (m). Each segment must be an
+// edge of a quad walked counter-clockwise (the body on the left); otherwise InputError names the
+// curve and the segment.
+ContactSurface MakeSurface(const fe::Mesh& mesh,
+                           const std::string& curve_name,
+                           const std::vector<double>& bulk_modulus,
+                           double thickness);
+
+}  // namespace spallkit::contact
