@@ -1,0 +1,308 @@
+#include "dsp/detection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/error.h"
+
+namespace spallkit::dsp {
+
+bool DetectionOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!(false_alarm_probability > 0.0 && false_alarm_probability < 1.0))
+    return fail("false-alarm probability must be in (0, 1)");
+  if (!(tolerance >= 0.0 && tolerance <= 0.2)) return fail("tolerance must be in [0, 0.2]");
+  if (floor_window_bins < 21) return fail("floor window must be >= 21 bins");
+  if (!(line_p_value > 0.0 && line_p_value < 1.0)) return fail("line p-value must be in (0, 1)");
+  if (!(max_line_score > 0.0)) return fail("max line score must be > 0");
+  if (!(guard_bins >= 0.0 && guard_fraction >= 0.0)) return fail("guards must be >= 0");
+  return true;
+}
+
+double NormalizedSpectrum::BinTail(double z_value) const {
+  if (z_value <= 0.0) return 1.0;
+  // Lomax: E[exp(-t mu_hat / mu)] with mu_hat / mu ~ Gamma(n, 1/n).
+  return std::exp(-effective_samples * std::log1p(z_value / effective_samples));
+}
+
+double NormalizedSpectrum::PairPValue(double z_value) const {
+  const double q = BinTail(z_value);
+  // 1 - (1 - q)^2 without cancellation for small q.
+  return q * (2.0 - q);
+}
+
+NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
+                                     double resolution_hz,
+                                     const DetectionOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError("detection: " + error);
+  if (!(resolution_hz > 0.0)) throw InputError("detection: resolution must be > 0 Hz");
+  const int n = static_cast<int>(power.size());
+  const int w = options.floor_window_bins;
+  if (n < w + 1)
+    throw InputError("detection: spectrum has " + std::to_string(n) + " bins, need more than " +
+                     std::to_string(w) + " for the noise floor (record too short)");
+  NormalizedSpectrum out;
+  out.power.assign(power.begin(), power.end());
+  out.resolution_hz = resolution_hz;
+  out.effective_samples = w * std::numbers::ln2 * std::numbers::ln2;
+  out.floor.assign(n, 0.0);
+  out.z.assign(n, 0.0);
+
+  // Median of the window [start, start + w) around anchor bins spaced `step` apart.
+  const int step = std::max(1, w / 16);
+  std::vector<int> anchors;
+  for (int i = 1; i < n; i += step) anchors.push_back(i);
+  if (anchors.back() != n - 1) anchors.push_back(n - 1);
+  std::vector<double> anchor_floor(anchors.size());
+  std::vector<double> buf(w);
+  for (size_t a = 0; a < anchors.size(); ++a) {
+    int start = anchors[a] - w / 2;
+    start = std::clamp(start, 1, n - w);
+    std::copy(power.begin() + start, power.begin() + start + w, buf.begin());
+    auto mid = buf.begin() + w / 2;
+    std::nth_element(buf.begin(), mid, buf.end());
+    anchor_floor[a] = *mid / std::numbers::ln2;
+  }
+  // Linear interpolation between anchors.
+  size_t a = 0;
+  const double tiny = std::numeric_limits<double>::min();
+  for (int i = 1; i < n; ++i) {
+    while (a + 1 < anchors.size() && anchors[a + 1] < i) ++a;
+    double f;
+    if (a + 1 >= anchors.size() || i <= anchors[a]) {
+      f = anchor_floor[a];
+    } else {
+      const double t = double(i - anchors[a]) / double(anchors[a + 1] - anchors[a]);
+      f = (1.0 - t) * anchor_floor[a] + t * anchor_floor[a + 1];
+    }
+    out.floor[i] = std::max(f, tiny);
+    out.z[i] = power[i] / out.floor[i];
+  }
+  out.floor[0] = out.floor.size() > 1 ? out.floor[1] : 1.0;
+  out.z[0] = 0.0;
+  return out;
+}
+
+double LogGammaUpperTail(int m, double x) {
+  if (x <= 0.0) return 0.0;
+  // Q(m, x) = exp(-x) sum_{j<m} x^j / j!, summed in log space.
+  double log_term = 0.0;  // j = 0
+  double log_max = 0.0;
+  std::vector<double> logs(m);
+  for (int j = 0; j < m; ++j) {
+    if (j > 0) log_term += std::log(x) - std::log(double(j));
+    logs[j] = log_term;
+    log_max = std::max(log_max, log_term);
+  }
+  double s = 0.0;
+  for (double l : logs) s += std::exp(l - log_max);
+  return std::min(0.0, -x + log_max + std::log(s));
+}
+
+double GammaThreshold(int m, double alpha_over_mult) {
+  const double target = std::log(alpha_over_mult);
+  if (target >= 0.0) return 0.0;
+  double lo = 0.0, hi = 10.0;
+  while (LogGammaUpperTail(m, hi) > target) hi *= 2.0;
+  for (int it = 0; it < 100; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (LogGammaUpperTail(m, mid) > target ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+bool FamilyDetection::family_evidence() const {
+  if (significant_harmonics >= 2) return true;
+  // One harmonic with both of its sidebands.
+  for (const auto& h : lines) {
+    if (h.line.is_sideband() || !h.significant) continue;
+    int sb = 0;
+    for (const auto& s : lines)
+      if (s.line.is_sideband() && s.line.harmonic == h.line.harmonic && s.significant) ++sb;
+    if (sb >= 2) return true;
+  }
+  return false;
+}
+
+namespace {
+
+// Distance (Hz) from f to the nearest multiple m * base, m >= 1.
+double DistanceToHarmonic(double f, double base) {
+  if (!(base > 0.0)) return std::numeric_limits<double>::infinity();
+  const double m = std::max(1.0, std::round(f / base));
+  return std::abs(f - m * base);
+}
+
+}  // namespace
+
+FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
+                             const FaultFamily& family,
+                             const DetectionContext& context,
+                             const DetectionOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError("detection: " + error);
+  if (!(context.shaft_hz > 0.0)) throw InputError("detection: shaft speed must be > 0 Hz");
+  const double df = spectrum.resolution_hz;
+  const int nbins = static_cast<int>(spectrum.z.size());
+  const double tol = options.tolerance;
+  const double c = context.center_scale > 0.0 ? context.center_scale : 1.0;
+  const double s_lo = c * (1.0 - tol), s_hi = c * (1.0 + tol);
+
+  FamilyDetection det;
+  det.component = family.component;
+  const int nl = static_cast<int>(family.lines.size());
+
+  // Exclusions do not depend on s beyond a bin or two: decide them at each s for the shaft (the
+  // shaft lines move with the speed), once for mains (fixed in Hz).
+  auto excluded_at = [&](double f, double s, std::string* why) {
+    const double guard = std::max(options.guard_bins * df, options.guard_fraction * f);
+    if (context.exclude_shaft &&
+        (DistanceToHarmonic(f, context.shaft_hz * s) <= guard ||
+         (context.measured_shaft_scale > 0.0 &&
+          DistanceToHarmonic(f, context.shaft_hz * context.measured_shaft_scale) <= guard))) {
+      if (why) *why = "shaft";
+      return true;
+    }
+    for (double mains : options.mains_hz) {
+      if (context.exclude_mains && DistanceToHarmonic(f, mains) <= guard) {
+        if (why) *why = "mains";
+        return true;
+      }
+    }
+    if (f / df + 1.0 >= nbins - 1 || f <= 0.0) {
+      if (why) *why = "range";
+      return true;
+    }
+    return false;
+  };
+
+  const double f_top = family.MaxLineHz() * s_hi;
+  const double ds = f_top > 0.0 ? 0.5 * df / f_top : 1.0;
+  const int grid = std::max(1, static_cast<int>(std::ceil((s_hi - s_lo) / ds)) + 1);
+
+  std::vector<int> bins(nl, -1), prev_bins(nl, -2);
+  double best_score = -1.0, best_s = c;
+  int best_used = 0;
+  int combos = 0;
+  int max_used = 0;
+  for (int g = 0; g < grid; ++g) {
+    const double s = grid == 1 ? c : s_lo + (s_hi - s_lo) * g / double(grid - 1);
+    double score = 0.0;
+    int used = 0;
+    for (int l = 0; l < nl; ++l) {
+      const double f = family.lines[l].nominal_hz * s;
+      if (excluded_at(f, s, nullptr)) {
+        bins[l] = -1;
+        continue;
+      }
+      const int i0 = static_cast<int>(std::floor(f / df));
+      const int i = spectrum.z[i0 + 1] > spectrum.z[i0] ? i0 + 1 : i0;
+      bins[l] = i0;
+      const double p = spectrum.PairPValue(spectrum.z[i]);
+      score += std::min(-std::log(std::max(p, 1e-300)), options.max_line_score);
+      ++used;
+    }
+    if (bins != prev_bins) {
+      ++combos;
+      prev_bins = bins;
+    }
+    max_used = std::max(max_used, used);
+    // Compare combs with different M by their Gamma tail, not the raw sum.
+    const double better =
+        used > 0 ? -LogGammaUpperTail(used, score) : -std::numeric_limits<double>::infinity();
+    const double current = best_used > 0 ? -LogGammaUpperTail(best_used, best_score)
+                                         : -std::numeric_limits<double>::infinity();
+    if (better > current) {
+      best_score = score;
+      best_s = s;
+      best_used = used;
+    }
+  }
+
+  det.scale = best_s;
+  det.combinations = combos;
+  det.lines_used = best_used;
+  det.score = std::max(best_score, 0.0);
+  const double mult = std::max(1.0, context.multiplicity) * std::max(1, combos);
+  if (best_used > 0) {
+    det.threshold = GammaThreshold(best_used, options.false_alarm_probability / mult);
+    det.p_value = std::min(1.0, mult * std::exp(LogGammaUpperTail(best_used, det.score)));
+  } else {
+    det.threshold = std::numeric_limits<double>::infinity();
+    det.p_value = 1.0;
+  }
+
+  // Line table at the best scale.
+  double num = 0.0, den = 0.0;
+  for (int l = 0; l < nl; ++l) {
+    LineEvidence ev;
+    ev.line = family.lines[l];
+    const double f = ev.line.nominal_hz * best_s;
+    ev.freq_hz = f;
+    if (excluded_at(f, best_s, &ev.exclusion)) {
+      ev.excluded = true;
+      if (ev.exclusion != "range") {
+        const int i0 = static_cast<int>(std::floor(f / df));
+        ev.power = std::max(spectrum.power[i0], spectrum.power[i0 + 1]);
+        ev.z = std::max(spectrum.z[i0], spectrum.z[i0 + 1]);
+      }
+      det.lines.push_back(ev);
+      continue;
+    }
+    const int i0 = static_cast<int>(std::floor(f / df));
+    const int i = spectrum.z[i0 + 1] > spectrum.z[i0] ? i0 + 1 : i0;
+    ev.power = spectrum.power[i];
+    ev.z = spectrum.z[i];
+    ev.p_value = spectrum.PairPValue(ev.z);
+    ev.significant = ev.p_value <= options.line_p_value;
+    ev.freq_hz = InterpolatePeakHz(spectrum.power, i, df);
+    if (ev.significant) {
+      if (ev.line.is_sideband()) {
+        ++det.significant_sidebands;
+      } else {
+        ++det.significant_harmonics;
+        // Least squares f_k = k f0 with equal errors: f0 = sum k f_k / sum k^2.
+        num += ev.line.harmonic * ev.freq_hz;
+        den += double(ev.line.harmonic) * ev.line.harmonic;
+      }
+    }
+    det.lines.push_back(ev);
+  }
+  det.fundamental_hz = den > 0.0 ? num / den : family.fundamental_hz * best_s;
+
+  const bool significant = det.p_value <= options.false_alarm_probability;
+  const bool family_ok = det.family_evidence();
+  det.detected = significant && family_ok;
+  char buf[256];
+  if (det.detected) {
+    std::snprintf(buf,
+                  sizeof buf,
+                  "%d harmonics, %d sidebands significant; p = %.2g <= %.2g",
+                  det.significant_harmonics,
+                  det.significant_sidebands,
+                  det.p_value,
+                  options.false_alarm_probability);
+  } else if (!significant) {
+    std::snprintf(buf,
+                  sizeof buf,
+                  "comb not significant: p = %.2g > %.2g",
+                  det.p_value,
+                  options.false_alarm_probability);
+  } else {
+    std::snprintf(buf,
+                  sizeof buf,
+                  "significant comb but no family: %d harmonic(s), %d sideband(s) significant",
+                  det.significant_harmonics,
+                  det.significant_sidebands);
+  }
+  det.reason = buf;
+  return det;
+}
+
+}  // namespace spallkit::dsp
