@@ -23,9 +23,9 @@ ContactSurface MakeSurfaceFromChain(const std::string& name,
                                     const std::vector<int>& nodes,
                                     bool closed) {
   const int n = static_cast<int>(nodes.size());
-  if (n < 2 || (closed && n < 3)) {
+  if (n < 1 || (closed && n < 3)) {
     throw InputError("contact surface '" + name + "': needs at least " +
-                     std::string(closed ? "3" : "2") + " nodes, got " + std::to_string(n));
+                     std::string(closed ? "3" : "1") + " nodes, got " + std::to_string(n));
   }
   ContactSurface s;
   s.name = name;

@@ -32,7 +32,8 @@ struct ContactSurface {
   double MeanSegmentLength(const double* x, const double* y) const;
 };
 
-// A surface from a bare chain of node ids (no stiffness data). Needs >= 2 nodes (>= 3 if closed).
+// A surface from a bare chain of node ids (no stiffness data). Needs >= 1 node (>= 3 if closed);
+// a single node or a node set makes a slave-only surface (no segments).
 ContactSurface MakeSurfaceFromChain(const std::string& name,
                                     const std::vector<int>& nodes,
                                     bool closed);
