@@ -1,0 +1,559 @@
+#include "sim/bearing/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace spallkit::sim {
+namespace {
+
+constexpr double kMm = 1e-3;
+constexpr double kPi = std::numbers::pi;
+
+std::string Fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// "file:line" for a node parsed from a file, "--set" for a value from an override, the file
+// name alone for a default that has no source.
+std::string Where(const std::string& file, const toml::node* node) {
+  if (node) {
+    const auto& src = node->source();
+    if (src.path && src.path->rfind("--set", 0) == 0) return *src.path;
+    if (src.begin.line > 0) return file + ":" + std::to_string(src.begin.line);
+  }
+  return file;
+}
+
+// Inclusive/exclusive numeric range with a message.
+struct Range {
+  double lo = -HUGE_VAL, hi = HUGE_VAL;
+  bool lo_open = false, hi_open = false;
+  bool Contains(double v) const {
+    if (!std::isfinite(v)) return false;
+    if (lo_open ? !(v > lo) : !(v >= lo)) return false;
+    if (hi_open ? !(v < hi) : !(v <= hi)) return false;
+    return true;
+  }
+  std::string Describe() const {
+    if (hi == HUGE_VAL) return std::string(lo_open ? "> " : ">= ") + Fmt(lo);
+    return std::string("in ") + (lo_open ? "(" : "[") + Fmt(lo) + ", " + Fmt(hi) +
+           (hi_open ? ")" : "]");
+  }
+};
+const Range kPositive{0.0, HUGE_VAL, true, false};
+const Range kNonNegative{0.0, HUGE_VAL, false, false};
+
+// One TOML table being read: remembers which keys were used, fills in defaults (so the table
+// becomes the effective scene), and reports unknown keys.
+class Section {
+ public:
+  Section(toml::table* table, std::string prefix, const std::string* file)
+      : table_(table), prefix_(std::move(prefix)), file_(file) {}
+
+  std::string Key(const std::string& key) const { return prefix_ + key; }
+  [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
+    throw InputError(Where(*file_, table_->get(key)) + ": " + Key(key) + ": " + what);
+  }
+
+  double Number(const std::string& key, double def, const Range& range) {
+    used_.insert(key);
+    toml::node* n = table_->get(key);
+    if (!n) {
+      table_->insert(key, def);
+      return def;
+    }
+    double v;
+    if (auto f = n->as_floating_point())
+      v = f->get();
+    else if (auto i = n->as_integer())
+      v = static_cast<double>(i->get());
+    else
+      Fail(key, std::string("expected a number, got ") + TypeName(*n));
+    if (!range.Contains(v)) Fail(key, "must be " + range.Describe() + " (got " + Fmt(v) + ")");
+    return v;
+  }
+
+  int Integer(const std::string& key, int def, int lo, int hi) {
+    used_.insert(key);
+    toml::node* n = table_->get(key);
+    if (!n) {
+      table_->insert(key, def);
+      return def;
+    }
+    auto i = n->as_integer();
+    if (!i) Fail(key, std::string("expected an integer, got ") + TypeName(*n));
+    if (i->get() < lo || i->get() > hi)
+      Fail(key,
+           "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
+               std::to_string(i->get()) + ")");
+    return static_cast<int>(i->get());
+  }
+
+  std::string String(const std::string& key, const std::string& def) {
+    used_.insert(key);
+    toml::node* n = table_->get(key);
+    if (!n) {
+      table_->insert(key, def);
+      return def;
+    }
+    auto s = n->as_string();
+    if (!s) Fail(key, std::string("expected a string, got ") + TypeName(*n));
+    return s->get();
+  }
+
+  std::vector<std::string> Strings(const std::string& key, const std::vector<std::string>& def) {
+    used_.insert(key);
+    toml::node* n = table_->get(key);
+    if (!n) {
+      toml::array a;
+      for (const auto& s : def) a.push_back(s);
+      table_->insert(key, std::move(a));
+      return def;
+    }
+    auto a = n->as_array();
+    if (!a) Fail(key, std::string("expected an array of strings, got ") + TypeName(*n));
+    std::vector<std::string> out;
+    for (auto& e : *a) {
+      auto s = e.as_string();
+      if (!s) Fail(key, "expected an array of strings");
+      out.push_back(s->get());
+    }
+    return out;
+  }
+
+  bool Has(const std::string& key) const { return table_->contains(key); }
+
+  // A sub-table (created empty if absent, so defaults land in the effective scene).
+  Section Table(const std::string& key) {
+    used_.insert(key);
+    toml::node* n = table_->get(key);
+    if (!n) {
+      table_->insert(key, toml::table{});
+      n = table_->get(key);
+    }
+    if (!n->is_table()) Fail(key, std::string("expected a table, got ") + TypeName(*n));
+    return Section(n->as_table(), prefix_ + key + ".", file_);
+  }
+
+  // Marks a key as known without reading it (arrays of tables handled by the caller).
+  toml::node* Take(const std::string& key) {
+    used_.insert(key);
+    return table_->get(key);
+  }
+
+  void RejectUnknown() const {
+    for (auto&& [k, v] : *table_) {
+      const std::string key(k.str());
+      if (used_.count(key)) continue;
+      std::string known;
+      for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
+      throw InputError(Where(*file_, &v) + ": unknown key '" + prefix_ + key + "'" +
+                       (known.empty() ? "" : " (known here: " + known + ")"));
+    }
+  }
+
+  static const char* TypeName(const toml::node& n) {
+    switch (n.type()) {
+      case toml::node_type::string:
+        return "a string";
+      case toml::node_type::integer:
+        return "an integer";
+      case toml::node_type::floating_point:
+        return "a float";
+      case toml::node_type::boolean:
+        return "a boolean";
+      case toml::node_type::array:
+        return "an array";
+      case toml::node_type::table:
+        return "a table";
+      default:
+        return "a date/time";
+    }
+  }
+
+  toml::table* table() { return table_; }
+
+ private:
+  toml::table* table_;
+  std::string prefix_;
+  const std::string* file_;
+  std::set<std::string> used_;
+};
+
+Material ReadMaterial(Section s, const Material& def) {
+  Material m;
+  m.youngs_modulus_pa = s.Number("youngs_modulus_pa", def.youngs_modulus_pa, kPositive);
+  m.poisson_ratio = s.Number("poisson_ratio", def.poisson_ratio, {-1.0, 0.5, true, true});
+  m.density_kg_m3 = s.Number("density_kg_m3", def.density_kg_m3, kPositive);
+  s.RejectUnknown();
+  return m;
+}
+
+void ReadGeometry(Section s, SceneGeometry* g) {
+  const std::string catalog = s.String("catalog", "N205EM");
+  try {
+    g->bearing = CatalogBearing(catalog);
+  } catch (const InputError& e) {
+    s.Fail("catalog", e.what());
+  }
+  BearingGeometry& b = g->bearing;
+  const BearingGeometry cat = b;
+  b.num_elements = s.Integer("roller_count", b.num_elements, 3, 1000);
+  b.element_diameter_m =
+      s.Number("roller_diameter_mm", b.element_diameter_m / kMm, kPositive) * kMm;
+  b.pitch_diameter_m = s.Number("pitch_diameter_mm", b.pitch_diameter_m / kMm, kPositive) * kMm;
+  b.inner_raceway_diameter_m =
+      s.Number("inner_raceway_diameter_mm", b.inner_raceway_diameter_m / kMm, kPositive) * kMm;
+  b.outer_raceway_diameter_m =
+      s.Number("outer_raceway_diameter_mm", b.outer_raceway_diameter_m / kMm, kPositive) * kMm;
+  if (b.num_elements != cat.num_elements || b.element_diameter_m != cat.element_diameter_m ||
+      b.pitch_diameter_m != cat.pitch_diameter_m ||
+      b.inner_raceway_diameter_m != cat.inner_raceway_diameter_m ||
+      b.outer_raceway_diameter_m != cat.outer_raceway_diameter_m)
+    b.name = cat.name + " (modified)";
+  g->thickness_m = s.Number("thickness_mm", 9.0, kPositive) * kMm;
+  g->diametral_clearance_m = s.Number("diametral_clearance_mm", 0.02, {0.0, 1.0}) * kMm;
+  g->pocket_clearance_m = s.Number("pocket_clearance_mm", 0.2, {0.0, 5.0}) * kMm;
+  g->outer_ring_outer_diameter_m = s.Number("outer_ring_outer_diameter_mm", 52.0, kPositive) * kMm;
+  g->inner_ring_bore_diameter_m = s.Number("inner_ring_bore_diameter_mm", 25.0, kPositive) * kMm;
+  g->cage_inner_diameter_m = s.Number("cage_inner_diameter_mm", 35.5, kPositive) * kMm;
+  g->cage_outer_diameter_m = s.Number("cage_outer_diameter_mm", 42.0, kPositive) * kMm;
+  g->adapter_width_m = s.Number("adapter_width_mm", 40.0, kPositive) * kMm;
+  g->adapter_height_m = s.Number("adapter_height_mm", 31.0, kPositive) * kMm;
+  g->roller_phase_rad = s.Number("roller_phase_deg", 0.0, {-360.0, 360.0}) * kPi / 180.0;
+  s.RejectUnknown();
+
+  // Consistency, each message naming the key to change.
+  try {
+    b.Validate();
+  } catch (const InputError& e) {
+    s.Fail("roller_count", e.what());
+  }
+  const double d = b.element_diameter_m, dm = b.pitch_diameter_m;
+  if (std::abs(b.outer_raceway_diameter_m - b.inner_raceway_diameter_m - 2 * d) > 0.05 * d)
+    s.Fail("outer_raceway_diameter_mm",
+           "raceway diameters must differ by two roller diameters (nominal, zero clearance; "
+           "clearance is diametral_clearance_mm)");
+  if (std::abs(0.5 * (b.outer_raceway_diameter_m + b.inner_raceway_diameter_m) - dm) > 0.05 * d)
+    s.Fail("pitch_diameter_mm", "must be the mean of the raceway diameters");
+  if (!(g->outer_ring_outer_diameter_m > b.outer_raceway_diameter_m + 0.5e-3))
+    s.Fail("outer_ring_outer_diameter_mm",
+           "must exceed the outer raceway diameter (" + Fmt(b.outer_raceway_diameter_m / kMm) +
+               " mm) by at least 0.5 mm");
+  if (!(g->inner_ring_bore_diameter_m < b.inner_raceway_diameter_m - 0.5e-3))
+    s.Fail("inner_ring_bore_diameter_mm",
+           "must be smaller than the inner raceway diameter (" +
+               Fmt(b.inner_raceway_diameter_m / kMm) + " mm) by at least 0.5 mm");
+  if (!(g->cage_inner_diameter_m > b.inner_raceway_diameter_m && g->cage_inner_diameter_m < dm))
+    s.Fail("cage_inner_diameter_mm", "must lie between the inner raceway and pitch diameters");
+  if (!(g->cage_outer_diameter_m < b.outer_raceway_diameter_m && g->cage_outer_diameter_m > dm))
+    s.Fail("cage_outer_diameter_mm", "must lie between the pitch and outer raceway diameters");
+  const double c = 0.5 * (d + g->pocket_clearance_m);  // pocket half width
+  const double rci = 0.5 * g->cage_inner_diameter_m;
+  if (!(c < rci) || !(2.0 * std::asin(c / rci) < 2.0 * kPi / b.num_elements * 0.9))
+    s.Fail("pocket_clearance_mm", "pockets leave no cage web at the cage inner diameter");
+  if (!(g->adapter_width_m < g->outer_ring_outer_diameter_m * 0.98))
+    s.Fail("adapter_width_mm", "must be smaller than the outer ring outer diameter");
+}
+
+}  // namespace
+
+std::vector<std::string> KnownOutputs() {
+  return {"contact_forces", "acceleration", "cage", "rollers", "energy", "field"};
+}
+
+void ApplyOverride(toml::table& table, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set '" + assignment + "': expected key.path=value");
+  const std::string path = assignment.substr(0, eq);
+  const std::string value = assignment.substr(eq + 1);
+  std::vector<std::string> parts;
+  for (std::size_t start = 0;;) {
+    const auto dot = path.find('.', start);
+    parts.push_back(path.substr(start, dot - start));
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  for (const auto& p : parts)
+    if (p.empty()) throw InputError("--set " + path + ": empty key component");
+
+  // Parse the value as TOML; a bare word that is not TOML is a string.
+  const std::string where = "--set " + path;
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + value, where);
+  } catch (const toml::parse_error&) {
+    // A bare word: re-parse it as a quoted string so it keeps the "--set" source in messages.
+    std::string quoted = "\"";
+    for (char ch : value) {
+      if (ch == '"' || ch == '\\') quoted += '\\';
+      quoted += ch;
+    }
+    quoted += '"';
+    try {
+      parsed = toml::parse("v = " + quoted, where);
+    } catch (const toml::parse_error& e) {
+      throw InputError(where + ": cannot parse value '" + value + "'");
+    }
+  }
+  toml::node& new_value = *parsed.get("v");
+
+  // Walk to the parent container.
+  toml::node* cur = &table;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    if (auto t = cur->as_table()) {
+      if (!t->contains(p)) {
+        // Numeric next component: an array of tables; else a table.
+        const bool next_index = !parts[i + 1].empty() &&
+                                std::all_of(parts[i + 1].begin(), parts[i + 1].end(), ::isdigit);
+        if (next_index)
+          t->insert(p, toml::array{});
+        else
+          t->insert(p, toml::table{});
+      }
+      cur = t->get(p);
+    } else if (auto a = cur->as_array()) {
+      if (!std::all_of(p.begin(), p.end(), ::isdigit))
+        throw InputError(where + ": '" + p + "' must be an array index");
+      const std::size_t idx = std::stoul(p);
+      if (idx == a->size()) a->push_back(toml::table{});
+      if (idx >= a->size())
+        throw InputError(where + ": index " + p + " out of range (array has " +
+                         std::to_string(a->size()) + " elements)");
+      cur = a->get(idx);
+    } else {
+      throw InputError(where + ": '" + p + "' is not a table");
+    }
+  }
+  auto* parent = cur->as_table();
+  if (!parent) throw InputError(where + ": parent of '" + parts.back() + "' is not a table");
+  const std::string& leaf = parts.back();
+  if (toml::node* old = parent->get(leaf)) {
+    const bool float_from_int = old->is_floating_point() && new_value.is_integer();
+    if (old->type() != new_value.type() && !float_from_int)
+      throw InputError(where + ": expected " +
+                       std::string(old->is_floating_point() ? "a number"
+                                   : old->is_integer()      ? "an integer"
+                                   : old->is_string()       ? "a string"
+                                   : old->is_boolean()      ? "a boolean"
+                                   : old->is_array()        ? "an array"
+                                                            : "a table") +
+                       " (got '" + value + "')");
+    if (float_from_int) {
+      parent->insert_or_assign(leaf, static_cast<double>(new_value.as_integer()->get()));
+      return;
+    }
+  }
+  parent->insert_or_assign(leaf, std::move(new_value));
+}
+
+Scene ParseScene(const std::string& toml_text,
+                 const std::string& source_name,
+                 const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw InputError(source_name + ":" + std::to_string(e.source().begin.line) + ": " +
+                     std::string(e.description()));
+  }
+  for (const auto& o : overrides) ApplyOverride(root, o);
+
+  Scene scene;
+  scene.source = source_name;
+  const std::string* file = &scene.source;
+  Section top(&root, "", file);
+
+  ReadGeometry(top.Table("bearing"), &scene.geometry);
+  const SceneGeometry& g = scene.geometry;
+  const int z = g.bearing.num_elements;
+  const double roller_d = g.bearing.element_diameter_m;
+
+  {
+    Section m = top.Table("materials");
+    SceneMaterials& mat = scene.materials;
+    const SceneMaterials def;
+    mat.outer_ring = ReadMaterial(m.Table("outer_ring"), def.outer_ring);
+    mat.inner_ring = ReadMaterial(m.Table("inner_ring"), def.inner_ring);
+    mat.roller = ReadMaterial(m.Table("roller"), def.roller);
+    mat.cage = ReadMaterial(m.Table("cage"), def.cage);
+    mat.adapter = ReadMaterial(m.Table("adapter"), def.adapter);
+    m.RejectUnknown();
+  }
+
+  // [[defects]]: absent -> the paper's one spall; an empty array -> a healthy bearing.
+  {
+    toml::node* n = top.Take("defects");
+    if (!n) {
+      toml::array a;
+      a.push_back(toml::table{});
+      root.insert("defects", std::move(a));
+      n = root.get("defects");
+    }
+    auto* arr = n->as_array();
+    if (!arr) top.Fail("defects", "expected an array of tables ([[defects]])");
+    std::set<int> rollers;
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      auto* t = arr->get(i)->as_table();
+      const std::string prefix = "defects." + std::to_string(i) + ".";
+      if (!t)
+        throw InputError(Where(*file, arr->get(i)) + ": defects." + std::to_string(i) +
+                         ": expected a table");
+      Section s(t, prefix, file);
+      Defect d;
+      d.roller = s.Integer("roller", 0, 0, 1 << 20);
+      if (d.roller >= z)
+        s.Fail(
+            "roller",
+            "roller index " + std::to_string(d.roller) + " >= roller count " + std::to_string(z));
+      if (!rollers.insert(d.roller).second)
+        s.Fail("roller",
+               "roller " + std::to_string(d.roller) +
+                   " already has a spall (one spall per roller is supported)");
+      d.width_m = s.Number("width_mm", 1.38, kPositive) * kMm;
+      d.depth_m = s.Number("depth_mm", 0.59, kPositive) * kMm;
+      d.angle_rad = s.Number("angle_deg", 0.0, {-360.0, 360.0}) * kPi / 180.0;
+      s.RejectUnknown();
+      if (!(d.width_m < roller_d))
+        s.Fail("width_mm",
+               "spall wider than the roller (" + Fmt(d.width_m / kMm) + " mm >= roller diameter " +
+                   Fmt(roller_d / kMm) + " mm)");
+      const double r = 0.5 * roller_d;
+      const double sag = r - std::sqrt(r * r - 0.25 * d.width_m * d.width_m);
+      if (!(d.depth_m > sag))
+        s.Fail("depth_mm",
+               "must exceed " + Fmt(sag / kMm) + " mm, the rise of the roller surface over the " +
+                   "spall mouth (else the flat bottom lies above the mouth)");
+      if (!(d.depth_m < 0.5 * r))
+        s.Fail("depth_mm", "must be below half the roller radius (" + Fmt(0.5 * r / kMm) + " mm)");
+      scene.defects.push_back(d);
+    }
+  }
+
+  {
+    Section s = top.Table("operation");
+    scene.operation.radial_load_n = s.Number("radial_load_n", 10000.0, kNonNegative);
+    scene.operation.inner_ring_speed_rad_s =
+        s.Number("speed_rpm", 1200.0, {0.0, 1e5}) * 2.0 * kPi / 60.0;
+    scene.operation.ramp_s = s.Number("ramp_s", 0.005, kNonNegative);
+    s.RejectUnknown();
+  }
+  {
+    Section s = top.Table("friction");
+    scene.friction.mu_static = s.Number("mu_static", 0.01, {0.0, 2.0});
+    scene.friction.mu_dynamic = s.Number("mu_dynamic", 0.005, {0.0, 2.0});
+    scene.friction.decay_s_m = s.Number("decay_s_m", 0.0, kNonNegative);
+    s.RejectUnknown();
+    if (scene.friction.mu_dynamic > scene.friction.mu_static)
+      s.Fail("mu_dynamic", "must not exceed mu_static");
+  }
+  {
+    Section s = top.Table("damping");
+    scene.damping.ratio = s.Number("ratio", 0.02, {0.0, 1.0});
+    scene.damping.reference_hz = s.Number("reference_hz", 1000.0, kPositive);
+    s.RejectUnknown();
+  }
+  {
+    Section s = top.Table("mesh");
+    scene.mesh.size_m = s.Number("size_mm", 0.25, {0.0, 5.0, true, false}) * kMm;
+    scene.mesh.contact_size_m =
+        s.Number("contact_size_mm", scene.mesh.size_m / kMm, {0.0, scene.mesh.size_m / kMm, true}) *
+        kMm;
+    scene.mesh.adapter_size_m = s.Number("adapter_size_mm",
+                                         std::max(1.0, scene.mesh.size_m / kMm),
+                                         {scene.mesh.size_m / kMm, 20.0}) *
+                                kMm;
+    s.RejectUnknown();
+    for (std::size_t i = 0; i < scene.defects.size(); ++i) {
+      const auto& d = scene.defects[i];
+      if (d.width_m < 1.5 * scene.mesh.contact_size_m || d.depth_m < scene.mesh.contact_size_m)
+        s.Fail("contact_size_mm",
+               "too coarse for defects." + std::to_string(i) + " (" + Fmt(d.width_m / kMm) + " x " +
+                   Fmt(d.depth_m / kMm) +
+                   " mm): need width >= 1.5 and depth >= 1 element; refine mesh.size_mm");
+    }
+  }
+  {
+    toml::node* n = top.Take("sensors");
+    if (!n) {
+      toml::array a;
+      a.push_back(toml::table{{"name", "top"},
+                              {"x_mm", 0.0},
+                              {"y_mm", g.outer_ring_outer_diameter_m / 2 / kMm},
+                              {"directions", toml::array{"y"}}});
+      a.push_back(toml::table{{"name", "side"},
+                              {"x_mm", g.outer_ring_outer_diameter_m / 2 / kMm},
+                              {"y_mm", 0.0},
+                              {"directions", toml::array{"x"}}});
+      root.insert("sensors", std::move(a));
+      n = root.get("sensors");
+    }
+    auto* arr = n->as_array();
+    if (!arr) top.Fail("sensors", "expected an array of tables ([[sensors]])");
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      auto* t = arr->get(i)->as_table();
+      if (!t)
+        throw InputError(Where(*file, arr->get(i)) + ": sensors." + std::to_string(i) +
+                         ": expected a table");
+      Section s(t, "sensors." + std::to_string(i) + ".", file);
+      Sensor sensor;
+      sensor.name = s.String("name", "sensor" + std::to_string(i));
+      sensor.x_m = s.Number("x_mm", 0.0, {-1000.0, 1000.0}) * kMm;
+      sensor.y_m = s.Number("y_mm", 0.0, {-1000.0, 1000.0}) * kMm;
+      sensor.directions = s.Strings("directions", {"x", "y"});
+      for (const auto& dir : sensor.directions)
+        if (dir != "x" && dir != "y")
+          s.Fail("directions", "expected \"x\" or \"y\", got \"" + dir + "\"");
+      s.RejectUnknown();
+      scene.sensors.push_back(sensor);
+    }
+  }
+  {
+    Section s = top.Table("run");
+    scene.run.duration_s = s.Number("duration_s", 0.2, kPositive);
+    scene.run.output_rate_hz = s.Number("output_rate_hz", 20000.0, kPositive);
+    const auto known = KnownOutputs();
+    scene.outputs =
+        s.Strings("outputs", {"contact_forces", "acceleration", "cage", "rollers", "energy"});
+    for (const auto& o : scene.outputs)
+      if (std::find(known.begin(), known.end(), o) == known.end()) {
+        std::string list;
+        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+        s.Fail("outputs", "unknown output \"" + o + "\" (known: " + list + ")");
+      }
+    s.RejectUnknown();
+  }
+  {
+    Section s = top.Table("solver");
+    scene.solver.time_step_safety = s.Number("time_step_safety", 0.9, {0.0, 1.0, true, false});
+    scene.solver.threads = s.Integer("threads", 0, 0, 1024);
+    scene.solver.checkpoint_interval_s = s.Number("checkpoint_interval_s", 0.0, kNonNegative);
+    s.RejectUnknown();
+  }
+  top.RejectUnknown();
+
+  std::ostringstream os;
+  os << root;
+  scene.effective_toml = os.str();
+  return scene;
+}
+
+Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseScene(text.str(), path, overrides);
+}
+
+}  // namespace spallkit::sim

@@ -1,0 +1,136 @@
+// Scene files: one TOML file describes one bearing simulation (docs/SCENE.md is the reference).
+//
+// The file is read ONCE, here: units are converted to SI (mm -> m, rpm -> rad/s, deg -> rad),
+// defaults are filled in (they reproduce the paper: N205EM, 10 kN, 1200 rpm, one 1.38 x 0.59 mm
+// spall, 0.25 mm mesh), and every value is range-checked. Errors are InputError with one line
+// "<file>:<line>: <key>: <what was expected>"; unknown keys are errors too, so a typo never
+// silently falls back to a default.
+//
+// Scene::effective_toml is the scene after overrides and defaults, the exact input of a run
+// (written to the HDF5 `scene` attribute so a result file can be re-run).
+#pragma once
+
+#include <toml++/toml.h>
+
+#include <string>
+#include <vector>
+
+#include "core/bearing.h"
+
+namespace spallkit::sim {
+
+struct Material {
+  double youngs_modulus_pa = 206e9;
+  double poisson_ratio = 0.3;
+  double density_kg_m3 = 7850.0;
+};
+
+// A rectangular (flat-bottomed) spall on a roller. The notch has chord width `width_m` at the
+// roller surface, parallel side walls and a flat bottom `depth_m` below the intact surface at the
+// spall's centre line. `angle_rad` is where its centre sits on the roller, measured
+// counter-clockwise from the direction pointing radially OUT of the bearing (towards the outer
+// race) at t = 0.
+struct Defect {
+  int roller = 0;
+  double width_m = 1.38e-3;
+  double depth_m = 0.59e-3;
+  double angle_rad = 0.0;
+};
+
+// Bearing section geometry. Raceway diameters are NOMINAL (zero clearance); the mesher opens
+// the diametral clearance P_d by moving each raceway by P_d/4, so a centred roller has a gap of
+// P_d/4 on each side and P_d/2 in total (Harris's convention, see quasistatic/harris_jones.h).
+struct SceneGeometry {
+  BearingGeometry bearing;               // Z, roller diameter, pitch and raceway diameters
+  double thickness_m = 9e-3;             // 2-D section thickness = effective roller length
+  double diametral_clearance_m = 20e-6;  // P_d
+  double pocket_clearance_m = 0.2e-3;    // pocket width - roller diameter (total)
+  double outer_ring_outer_diameter_m = 52e-3;
+  double inner_ring_bore_diameter_m = 25e-3;
+  double cage_inner_diameter_m = 35.5e-3;  // Table 1 lists 17.75 / 21 mm: radii, see SCENE.md
+  double cage_outer_diameter_m = 42e-3;
+  double adapter_width_m = 40e-3;
+  double adapter_height_m = 31e-3;  // at the centre line, bottom face to the seat
+  double roller_phase_rad = 0.0;    // roller 0 angle from the load line (bottom, -y)
+};
+
+struct SceneMaterials {
+  Material outer_ring, inner_ring, roller;
+  Material cage{100e9, 0.36, 8920.0};  // brass
+  Material adapter;                    // steel (Table 1 gives none; assumed)
+};
+
+struct SceneOperation {
+  double radial_load_n = 10000.0;       // on the inner ring, towards -y (roller 0)
+  double inner_ring_speed_rad_s = 0.0;  // from speed_rpm
+  double ramp_s = 0.005;                // linear speed ramp from rest
+};
+
+struct SceneFriction {
+  double mu_static = 0.01;
+  double mu_dynamic = 0.005;
+  double decay_s_m = 0.0;  // mu = mu_d + (mu_s - mu_d) exp(-decay |v_rel|) (LS-DYNA DC)
+};
+
+struct SceneDamping {
+  double ratio = 0.02;  // fraction of critical at reference_hz (mass proportional)
+  double reference_hz = 1000.0;
+};
+
+struct SceneMesh {
+  double size_m = 0.25e-3;          // target element edge length
+  double contact_size_m = 0.25e-3;  // edge length along contact surfaces (<= size_m refines)
+  double adapter_size_m = 1.0e-3;   // largest element height in the adapter, away from the seat
+};
+
+struct Sensor {
+  std::string name;
+  double x_m = 0.0, y_m = 0.0;          // position in the section (bearing centre at origin)
+  std::vector<std::string> directions;  // subset of {"x", "y"}
+};
+
+struct SceneRun {
+  double duration_s = 0.2;
+  double output_rate_hz = 20000.0;
+};
+
+struct SceneSolver {
+  double time_step_safety = 0.9;       // fraction of the critical step
+  int threads = 0;                     // 0: as many as OpenMP offers
+  double checkpoint_interval_s = 0.0;  // 0: no checkpoints
+};
+
+struct Scene {
+  std::string source;  // file name (or "<string>")
+  SceneGeometry geometry;
+  SceneMaterials materials;
+  std::vector<Defect> defects;
+  SceneOperation operation;
+  SceneFriction friction;
+  SceneDamping damping;
+  SceneMesh mesh;
+  std::vector<Sensor> sensors;
+  std::vector<std::string> outputs;  // e.g. "contact_forces", "acceleration", "cage", "energy"
+  SceneRun run;
+  SceneSolver solver;
+  std::string effective_toml;  // after overrides and defaults
+};
+
+// Reads and validates a scene file; `overrides` are "key.path=value" strings applied first
+// (see ApplyOverride). Throws InputError (one line naming file, line and key).
+Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+// Same from TOML text; `source_name` is used in messages.
+Scene ParseScene(const std::string& toml_text,
+                 const std::string& source_name,
+                 const std::vector<std::string>& overrides = {});
+
+// Sets one key from "a.b.c=value" (array elements by index: "defects.0.width_mm=2.27"; index ==
+// size appends a table). The value is parsed as a TOML value; a bare word that is not valid TOML
+// is taken as a string (catalog=N205EM). When the key already exists the new value must have the
+// same type (an integer may replace a float). Throws InputError naming the key.
+void ApplyOverride(toml::table& table, const std::string& assignment);
+
+// Output names accepted under [run] outputs.
+std::vector<std::string> KnownOutputs();
+
+}  // namespace spallkit::sim
