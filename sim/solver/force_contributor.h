@@ -24,11 +24,17 @@ class ForceContributor {
   }
 
   // Energy terms for the balance, cumulative since t = 0 (J).
-  virtual double StoredEnergy() const { return 0.0; }       // e.g. penalty spring energy
-  virtual double DissipatedEnergy() const { return 0.0; }   // e.g. friction work
-  virtual double ExternalWork() const { return 0.0; }       // work of applied loads
+  virtual double StoredEnergy() const { return 0.0; }      // e.g. penalty spring energy
+  virtual double DissipatedEnergy() const { return 0.0; }  // e.g. friction work
+  virtual double ExternalWork() const { return 0.0; }      // work of applied loads
 
   virtual std::string Name() const = 0;
+
+  // Checkpoint/restart (added by fe): a contributor with history (friction springs, cumulative
+  // energies) returns it as bytes and restores it, so that a resumed run is identical to an
+  // uninterrupted one. The default has no state.
+  virtual std::string SaveState() const { return {}; }
+  virtual void LoadState(const std::string& /*bytes*/) {}
 };
 
 }  // namespace spallkit::solver

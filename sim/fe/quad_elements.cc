@@ -1,0 +1,358 @@
+#include "sim/fe/quad_elements.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <istream>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include "core/error.h"
+#include "sim/fe/mesh_primitives.h"
+
+namespace spallkit::fe {
+namespace {
+
+template <typename T>
+void WriteVec(std::ostream& out, const std::vector<T>& v) {
+  const std::uint64_t n = v.size();
+  out.write(reinterpret_cast<const char*>(&n), sizeof n);
+  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+}
+
+template <typename T>
+void ReadVec(std::istream& in, std::vector<T>* v, const char* what) {
+  std::uint64_t n = 0;
+  in.read(reinterpret_cast<char*>(&n), sizeof n);
+  if (!in || n != v->size())
+    throw InputError(std::string("checkpoint: element array '") + what + "' has the wrong size");
+  in.read(reinterpret_cast<char*>(v->data()), static_cast<std::streamsize>(n * sizeof(T)));
+  if (!in) throw InputError(std::string("checkpoint: truncated element array '") + what + "'");
+}
+
+}  // namespace
+
+QuadElements::QuadElements(const Mesh& mesh, std::vector<Section> sections)
+    : sections_(std::move(sections)) {
+  ValidateMesh(mesh);
+  if (static_cast<int>(sections_.size()) != mesh.num_parts()) {
+    std::ostringstream os;
+    os << "elements: got " << sections_.size() << " sections for " << mesh.num_parts()
+       << " mesh parts";
+    throw InputError(os.str());
+  }
+  for (int p = 0; p < num_parts(); ++p) {
+    std::string err;
+    if (!sections_[p].IsValid(&err)) throw InputError(err + " (part '" + mesh.part_names[p] + "')");
+  }
+  num_nodes_ = mesh.num_nodes();
+  const int ne = mesh.num_elements();
+  part_ = mesh.element_part;
+  n1_.resize(ne), n2_.resize(ne), n3_.resize(ne), n4_.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    n1_[e] = mesh.quads[e][0], n2_[e] = mesh.quads[e][1], n3_[e] = mesh.quads[e][2],
+    n4_[e] = mesh.quads[e][3];
+  }
+  for (auto* v : {&sxx_, &syy_, &sxy_, &szz_, &qx_, &qy_}) v->assign(ne, 0.0);
+  fcx_.assign(4 * static_cast<size_t>(ne), 0.0);
+  fcy_.assign(4 * static_cast<size_t>(ne), 0.0);
+
+  // Blocks: runs of at most kBlockSize consecutive elements of one part.
+  for (int e = 0; e < ne;) {
+    int end = e + 1;
+    while (end < ne && end - e < kBlockSize && part_[end] == part_[e]) ++end;
+    blocks_.push_back({e, end, part_[e]});
+    e = end;
+  }
+  block_int_.assign(blocks_.size(), 0.0);
+  block_hg_.assign(blocks_.size(), 0.0);
+  block_damp_.assign(blocks_.size(), 0.0);
+  block_inv_dt_.assign(blocks_.size(), 0.0);
+  block_min_area_.assign(blocks_.size(), 0.0);
+
+  // CSR node -> corner slots; slots of a node in ascending order (fixed summation order).
+  node_ptr_.assign(num_nodes_ + 1, 0);
+  for (int e = 0; e < ne; ++e)
+    for (int c = 0; c < 4; ++c) ++node_ptr_[mesh.quads[e][c] + 1];
+  for (int i = 0; i < num_nodes_; ++i) node_ptr_[i + 1] += node_ptr_[i];
+  node_slots_.resize(4 * static_cast<size_t>(ne));
+  std::vector<int> fill(node_ptr_.begin(), node_ptr_.end() - 1);
+  for (int c = 0; c < 4; ++c)
+    for (int e = 0; e < ne; ++e) node_slots_[fill[mesh.quads[e][c]]++] = c * ne + e;
+  for (int i = 0; i < num_nodes_; ++i)
+    std::sort(node_slots_.begin() + node_ptr_[i], node_slots_.begin() + node_ptr_[i + 1]);
+}
+
+const std::vector<int>& QuadElements::connectivity(int corner) const {
+  switch (corner) {
+    case 0:
+      return n1_;
+    case 1:
+      return n2_;
+    case 2:
+      return n3_;
+    default:
+      return n4_;
+  }
+}
+
+void QuadElements::AddLumpedMass(NodalState* s) const {
+  for (int e = 0; e < num_elements(); ++e) {
+    const Section& sec = sections_[part_[e]];
+    const double x31 = s->x0[n3_[e]] - s->x0[n1_[e]], x42 = s->x0[n4_[e]] - s->x0[n2_[e]];
+    const double y31 = s->y0[n3_[e]] - s->y0[n1_[e]], y42 = s->y0[n4_[e]] - s->y0[n2_[e]];
+    const double m = 0.25 * sec.material.density * sec.thickness * 0.5 * (x31 * y42 - x42 * y31);
+    s->mass[n1_[e]] += m, s->mass[n2_[e]] += m, s->mass[n3_[e]] += m, s->mass[n4_[e]] += m;
+  }
+}
+
+template <bool kStiffDamp>
+double QuadElements::BlockKernel(
+    const Block& b, const NodalState& s, double h, double* e_int, double* e_hg, double* e_damp) {
+  const Section& sec = sections_[b.part];
+  const double lam = sec.PlaneLambda(), two_mu = 2.0 * sec.material.Mu();
+  const double lam_z = sec.mode == PlaneMode::kPlaneStrain ? sec.material.Lambda() : 0.0;
+  const double t = sec.thickness, half_t = 0.5 * t;
+  const double c2_wave = 2.0 * sec.WaveSpeed();
+  const double kappa_scale = sec.hourglass_coefficient * (2.0 / 3.0) * sec.BendingModulus() * t;
+  const double hh = 0.5 * h;
+  const double beta = beta_;
+  const std::size_t ne = n1_.size();
+  const double* __restrict x = s.x.data();
+  const double* __restrict y = s.y.data();
+  const double* __restrict vx = s.vx.data();
+  const double* __restrict vy = s.vy.data();
+  const int* __restrict n1 = n1_.data();
+  const int* __restrict n2 = n2_.data();
+  const int* __restrict n3 = n3_.data();
+  const int* __restrict n4 = n4_.data();
+  double* __restrict sxx = sxx_.data();
+  double* __restrict syy = syy_.data();
+  double* __restrict sxy = sxy_.data();
+  double* __restrict szz = szz_.data();
+  double* __restrict qxa = qx_.data();
+  double* __restrict qya = qy_.data();
+  double* __restrict fx1 = fcx_.data();
+  double* __restrict fx2 = fx1 + ne;
+  double* __restrict fx3 = fx2 + ne;
+  double* __restrict fx4 = fx3 + ne;
+  double* __restrict fy1 = fcy_.data();
+  double* __restrict fy2 = fy1 + ne;
+  double* __restrict fy3 = fy2 + ne;
+  double* __restrict fy4 = fy3 + ne;
+
+  double dint = 0.0, dhg = 0.0, ddamp = 0.0, inv_dt_max = 0.0,
+         min_area = std::numeric_limits<double>::infinity();
+#pragma omp simd reduction(+ : dint, dhg, ddamp) reduction(max : inv_dt_max) reduction(min : min_area)
+  for (int e = b.begin; e < b.end; ++e) {
+    const int i1 = n1[e], i2 = n2[e], i3 = n3[e], i4 = n4[e];
+    const double x1 = x[i1], x2 = x[i2], x3 = x[i3], x4 = x[i4];
+    const double y1 = y[i1], y2 = y[i2], y3 = y[i3], y4 = y[i4];
+    const double u1 = vx[i1], u2 = vx[i2], u3 = vx[i3], u4 = vx[i4];
+    const double w1 = vy[i1], w2 = vy[i2], w3 = vy[i3], w4 = vy[i4];
+    const double x31 = x3 - x1, x42 = x4 - x2, y31 = y3 - y1, y42 = y4 - y2;
+    const double u31 = u3 - u1, u42 = u4 - u2, w31 = w3 - w1, w42 = w4 - w2;
+
+    // --- Rate of deformation on the mid-step geometry (exactly skew for rigid rotation).
+    const double xm31 = x31 - hh * u31, xm42 = x42 - hh * u42;
+    const double ym31 = y31 - hh * w31, ym42 = y42 - hh * w42;
+    const double two_am = xm31 * ym42 - xm42 * ym31;
+    const double inv_m = 1.0 / two_am;
+    // 2A * velocity gradient.
+    const double nxx = ym42 * u31 - ym31 * u42;
+    const double nxy = xm31 * u42 - xm42 * u31;  // d vx / d y
+    const double nyx = ym42 * w31 - ym31 * w42;  // d vy / d x
+    const double nyy = xm31 * w42 - xm42 * w31;
+    const double s_inc = h * inv_m;
+    const double dxx = s_inc * nxx, dyy = s_inc * nyy, dxy = 0.5 * s_inc * (nxy + nyx);
+    // Hughes-Winget rotation: tan(alpha / 2) = omega * h / 2.
+    const double q = 0.25 * s_inc * (nyx - nxy);
+    const double inv_1q = 1.0 / (1.0 + q * q);
+    const double ca = (1.0 - q * q) * inv_1q, sa = 2.0 * q * inv_1q;
+    const double c2 = ca * ca - sa * sa, s2 = 2.0 * sa * ca;
+
+    // --- Stress: rotate, then add the elastic increment.
+    const double s_xx0 = sxx[e], s_yy0 = syy[e], s_xy0 = sxy[e];
+    const double p = 0.5 * (s_xx0 + s_yy0), d = 0.5 * (s_xx0 - s_yy0);
+    const double dr = d * c2 - s_xy0 * s2;
+    const double rxx = p + dr, ryy = p - dr, rxy = d * s2 + s_xy0 * c2;
+    const double tr = dxx + dyy;
+    const double n_xx = rxx + lam * tr + two_mu * dxx;
+    const double n_yy = ryy + lam * tr + two_mu * dyy;
+    const double n_xy = rxy + two_mu * dxy;
+    sxx[e] = n_xx, syy[e] = n_yy, sxy[e] = n_xy;
+    szz[e] += lam_z * tr;
+    const double area_m = 0.5 * two_am;
+    dint += t * area_m * (0.5 * (rxx + n_xx) * dxx + 0.5 * (ryy + n_yy) * dyy + (rxy + n_xy) * dxy);
+
+    // --- Current geometry: area, b-vectors, stable step.
+    const double two_a = x31 * y42 - x42 * y31;
+    const double inv_a2 = 1.0 / two_a;
+    min_area = std::min(min_area, two_a > 0.0 ? two_a : -1.0);  // NaN counts as inverted
+    const double x21 = x2 - x1, y21 = y2 - y1, x32 = x3 - x2, y32 = y3 - y2;
+    const double x43 = x4 - x3, y43 = y4 - y3, x14 = x1 - x4, y14 = y1 - y4;
+    const double d13 = x31 * x31 + y31 * y31, d24 = x42 * x42 + y42 * y42;
+    const double lmax = std::max(
+        std::max(std::max(d13, d24), std::max(x21 * x21 + y21 * y21, x32 * x32 + y32 * y32)),
+        std::max(x43 * x43 + y43 * y43, x14 * x14 + y14 * y14));
+    double inv_dt = c2_wave * std::sqrt(lmax) * inv_a2;  // c / L_e, L_e = A / sqrt(lmax)
+
+    double fxx = n_xx, fyy = n_yy, fxy = n_xy;  // stress that makes the force
+    if constexpr (kStiffDamp) {
+      // Viscous stress beta * C : D with D from the same velocity gradient.
+      const double vxx = inv_m * nxx, vyy = inv_m * nyy, vxy = 0.5 * inv_m * (nxy + nyx);
+      const double vtr = vxx + vyy;
+      const double sv_xx = beta * (lam * vtr + two_mu * vxx);
+      const double sv_yy = beta * (lam * vtr + two_mu * vyy);
+      const double sv_xy = beta * two_mu * vxy;
+      fxx += sv_xx, fyy += sv_yy, fxy += sv_xy;
+      ddamp += t * area_m * h * (sv_xx * vxx + sv_yy * vyy + 2.0 * sv_xy * vxy);
+      // dt = (2 / w)(sqrt(1 + xi^2) - xi), w = 2 / dt_e, xi = beta w / 2.
+      const double xi = beta * inv_dt;
+      inv_dt = inv_dt / (std::sqrt(1.0 + xi * xi) - xi);
+    }
+    inv_dt_max = std::max(inv_dt_max, inv_dt);
+
+    // --- Hourglass (gamma projection, co-rotational stiffness).
+    const double hx = x1 - x2 + x3 - x4, hy = y1 - y2 + y3 - y4;
+    const double g1 = (hy * x42 - hx * y42) * inv_a2;
+    const double g2 = (hx * y31 - hy * x31) * inv_a2;
+    const double qdx = 0.25 * ((u1 - u2 + u3 - u4) + g1 * u31 + g2 * u42);
+    const double qdy = 0.25 * ((w1 - w2 + w3 - w4) + g1 * w31 + g2 * w42);
+    const double kappa = kappa_scale * (d13 + d24) * inv_a2;
+    const double qx0 = qxa[e], qy0 = qya[e];
+    const double qxr = ca * qx0 - sa * qy0, qyr = sa * qx0 + ca * qy0;
+    const double qxn = qxr + kappa * h * qdx, qyn = qyr + kappa * h * qdy;
+    qxa[e] = qxn, qya[e] = qyn;
+    dhg += 0.5 * h * ((qxr + qxn) * qdx + (qyr + qyn) * qdy);
+    const double gm1 = 0.25 * (1.0 - g1), gm2 = 0.25 * (-1.0 - g2);
+    const double gm3 = 0.25 * (1.0 + g1), gm4 = 0.25 * (-1.0 + g2);
+
+    // --- Corner (resisting) forces: t A sigma . b_I + gamma_I Q.
+    const double ax1 = half_t * (fxy * x42 - fxx * y42), ay1 = half_t * (fyy * x42 - fxy * y42);
+    const double ax2 = half_t * (fxx * y31 - fxy * x31), ay2 = half_t * (fxy * y31 - fyy * x31);
+    fx1[e] = ax1 + gm1 * qxn, fy1[e] = ay1 + gm1 * qyn;
+    fx2[e] = ax2 + gm2 * qxn, fy2[e] = ay2 + gm2 * qyn;
+    fx3[e] = -ax1 + gm3 * qxn, fy3[e] = -ay1 + gm3 * qyn;
+    fx4[e] = -ax2 + gm4 * qxn, fy4[e] = -ay2 + gm4 * qyn;
+  }
+  *e_int += dint;
+  *e_hg += dhg;
+  *e_damp += ddamp;
+  return min_area > 0.0 ? inv_dt_max : std::numeric_limits<double>::infinity();
+}
+
+double QuadElements::ComputeCornerForces(const NodalState& s, double dt_prev, int threads) {
+  const int nb = static_cast<int>(blocks_.size());
+  const bool damp = beta_ > 0.0;
+#pragma omp parallel for schedule(static) num_threads(threads > 0 ? threads : omp_get_max_threads())
+  for (int k = 0; k < nb; ++k) {
+    block_inv_dt_[k] =
+        damp ? BlockKernel<true>(
+                   blocks_[k], s, dt_prev, &block_int_[k], &block_hg_[k], &block_damp_[k])
+             : BlockKernel<false>(
+                   blocks_[k], s, dt_prev, &block_int_[k], &block_hg_[k], &block_damp_[k]);
+  }
+  double inv_dt = 0.0;
+  for (int k = 0; k < nb; ++k) inv_dt = std::max(inv_dt, block_inv_dt_[k]);
+  if (!std::isfinite(inv_dt)) {
+    // Find the first inverted element for the message.
+    for (int e = 0; e < num_elements(); ++e) {
+      const double x31 = s.x[n3_[e]] - s.x[n1_[e]], x42 = s.x[n4_[e]] - s.x[n2_[e]];
+      const double y31 = s.y[n3_[e]] - s.y[n1_[e]], y42 = s.y[n4_[e]] - s.y[n2_[e]];
+      if (!(x31 * y42 - x42 * y31 > 0.0)) {
+        std::ostringstream os;
+        os << "element " << e << " (part " << part_[e] << ") inverted or degenerate (area <= 0)";
+        throw NumericalError(os.str());
+      }
+    }
+    throw NumericalError("elements: non-finite stable time step (NaN in positions or velocities)");
+  }
+  return inv_dt > 0.0 ? 1.0 / inv_dt : std::numeric_limits<double>::infinity();
+}
+
+void QuadElements::GatherForces(NodalState* s, int begin, int end) const {
+  const int* __restrict ptr = node_ptr_.data();
+  const int* __restrict slots = node_slots_.data();
+  const double* __restrict fcx = fcx_.data();
+  const double* __restrict fcy = fcy_.data();
+  double* __restrict fx = s->fx.data();
+  double* __restrict fy = s->fy.data();
+  for (int i = begin; i < end; ++i) {
+    double ax = 0.0, ay = 0.0;
+    for (int k = ptr[i]; k < ptr[i + 1]; ++k) ax -= fcx[slots[k]], ay -= fcy[slots[k]];
+    fx[i] = ax, fy[i] = ay;
+  }
+}
+
+void QuadElements::GatherForces(NodalState* s, int threads) const {
+  constexpr int kChunk = 1024;
+  const int nc = (num_nodes_ + kChunk - 1) / kChunk;
+#pragma omp parallel for schedule(static) num_threads(threads > 0 ? threads : omp_get_max_threads())
+  for (int c = 0; c < nc; ++c) GatherForces(s, c * kChunk, std::min(num_nodes_, (c + 1) * kChunk));
+}
+
+namespace {
+double SumBlocks(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s;
+}
+}  // namespace
+
+double QuadElements::InternalEnergy() const { return SumBlocks(block_int_); }
+double QuadElements::HourglassEnergy() const { return SumBlocks(block_hg_); }
+double QuadElements::DampingEnergy() const { return SumBlocks(block_damp_); }
+double QuadElements::InternalEnergy(int part) const {
+  double s = 0.0;
+  for (size_t k = 0; k < blocks_.size(); ++k)
+    if (blocks_[k].part == part) s += block_int_[k];
+  return s;
+}
+double QuadElements::HourglassEnergy(int part) const {
+  double s = 0.0;
+  for (size_t k = 0; k < blocks_.size(); ++k)
+    if (blocks_[k].part == part) s += block_hg_[k];
+  return s;
+}
+
+double QuadElements::VonMises(int e) const {
+  const double a = sxx_[e], b = syy_[e], c = szz_[e], t = sxy_[e];
+  return std::sqrt(0.5 * ((a - b) * (a - b) + (b - c) * (b - c) + (c - a) * (c - a)) + 3.0 * t * t);
+}
+
+double QuadElements::Area(const NodalState& s, int e) const {
+  const double x31 = s.x[n3_[e]] - s.x[n1_[e]], x42 = s.x[n4_[e]] - s.x[n2_[e]];
+  const double y31 = s.y[n3_[e]] - s.y[n1_[e]], y42 = s.y[n4_[e]] - s.y[n2_[e]];
+  return 0.5 * (x31 * y42 - x42 * y31);
+}
+
+void QuadElements::Centroid(const NodalState& s, int e, double* x, double* y) const {
+  *x = 0.25 * (s.x[n1_[e]] + s.x[n2_[e]] + s.x[n3_[e]] + s.x[n4_[e]]);
+  *y = 0.25 * (s.y[n1_[e]] + s.y[n2_[e]] + s.y[n3_[e]] + s.y[n4_[e]]);
+}
+
+void QuadElements::Save(std::ostream& out) const {
+  for (const auto* v :
+       {&sxx_, &syy_, &sxy_, &szz_, &qx_, &qy_, &block_int_, &block_hg_, &block_damp_})
+    WriteVec(out, *v);
+}
+
+void QuadElements::Load(std::istream& in) {
+  const char* names[] = {"sxx",
+                         "syy",
+                         "sxy",
+                         "szz",
+                         "qx",
+                         "qy",
+                         "internal energy",
+                         "hourglass energy",
+                         "damping energy"};
+  int k = 0;
+  for (auto* v : {&sxx_, &syy_, &sxy_, &szz_, &qx_, &qy_, &block_int_, &block_hg_, &block_damp_})
+    ReadVec(in, v, names[k++]);
+}
+
+}  // namespace spallkit::fe

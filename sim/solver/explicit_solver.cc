@@ -1,0 +1,582 @@
+#include "sim/solver/explicit_solver.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace spallkit::solver {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kNodeChunk = 1024;  // fixed node chunk: sums do not depend on the thread count
+constexpr int kRigidSums = 7;     // m, mx, my, mvx, mvy, m(x vy - y vx), m(x^2 + y^2)
+constexpr char kMagic[8] = {'S', 'P', 'K', 'C', 'K', 'P', 'T', '1'};
+
+template <typename T>
+void Put(std::ostream& out, const T& v) {
+  out.write(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <typename T>
+T Get(std::istream& in) {
+  T v{};
+  in.read(reinterpret_cast<char*>(&v), sizeof v);
+  if (!in) throw InputError("checkpoint: file is truncated");
+  return v;
+}
+void PutVec(std::ostream& out, const std::vector<double>& v) {
+  Put<std::uint64_t>(out, v.size());
+  out.write(reinterpret_cast<const char*>(v.data()),
+            static_cast<std::streamsize>(v.size() * sizeof(double)));
+}
+void GetVec(std::istream& in, std::vector<double>* v, const char* what) {
+  if (Get<std::uint64_t>(in) != v->size())
+    throw InputError(std::string("checkpoint: '") + what + "' has the wrong size");
+  in.read(reinterpret_cast<char*>(v->data()),
+          static_cast<std::streamsize>(v->size() * sizeof(double)));
+  if (!in) throw InputError("checkpoint: file is truncated");
+}
+
+}  // namespace
+
+TimeFunction RampedRotation(double omega, double ramp_time) {
+  return [omega, ramp_time](double t) {
+    if (t <= 0.0) return 0.0;
+    if (t < ramp_time) return omega * t * t / (2.0 * ramp_time);
+    return omega * (t - 0.5 * ramp_time);
+  };
+}
+
+TimeFunction RampedSpeed(double omega, double ramp_time) {
+  return [omega, ramp_time](double t) {
+    if (t <= 0.0) return 0.0;
+    return t < ramp_time ? omega * t / ramp_time : omega;
+  };
+}
+
+bool SolverOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!(time_step_scale > 0.0 && time_step_scale <= 1.0))
+    return fail("solver: time_step_scale must be in (0, 1]");
+  if (!(max_time_step > 0.0)) return fail("solver: max_time_step must be > 0");
+  if (!(mass_damping_ratio >= 0.0)) return fail("solver: mass_damping_ratio must be >= 0");
+  if (mass_damping_ratio > 0.0 && !(damping_frequency > 0.0))
+    return fail("solver: damping_frequency (Hz) must be > 0 when mass_damping_ratio > 0");
+  if (!(stiffness_damping_ratio >= 0.0))
+    return fail("solver: stiffness_damping_ratio must be >= 0");
+  if (stiffness_damping_ratio > 0.0 && !(stiffness_damping_frequency > 0.0))
+    return fail(
+        "solver: stiffness_damping_frequency (Hz) must be > 0 when stiffness_damping_ratio > 0");
+  if (output_every_steps < 0) return fail("solver: output_every_steps must be >= 0");
+  if (!(output_interval >= 0.0)) return fail("solver: output_interval must be >= 0");
+  if (!(max_energy_error >= 0.0)) return fail("solver: max_energy_error must be >= 0");
+  if (num_threads < 0) return fail("solver: num_threads must be >= 0");
+  return true;
+}
+
+double Energies::BalanceError() const {
+  const double total = kinetic + internal + hourglass + contact + friction + damping;
+  const double err = std::abs(total - initial_kinetic - external);
+  double scale = initial_kinetic;
+  for (double v : {kinetic, internal, hourglass, contact, friction, damping, external})
+    scale = std::max(scale, std::abs(v));
+  return scale > 0.0 ? err / scale : 0.0;
+}
+
+std::string SolverSummary::BriefReport() const {
+  char buf[512];
+  std::snprintf(
+      buf,
+      sizeof buf,
+      "steps %ld, t = %.6g s, dt %.4g..%.4g s, %d thread(s), %.3f s wall, %.2f ns/element-cycle; "
+      "E_kin %.4g J, E_int %.4g J, E_hg %.4g J, E_damp %.4g J, W_ext %.4g J, balance error %.3g",
+      steps,
+      time,
+      min_time_step,
+      max_time_step,
+      threads,
+      wall_seconds,
+      ns_per_element_cycle,
+      energies.kinetic,
+      energies.internal,
+      energies.hourglass,
+      energies.damping,
+      energies.external,
+      energies.BalanceError());
+  return buf;
+}
+
+ExplicitSolver::ExplicitSolver(const fe::Mesh& mesh,
+                               std::vector<fe::Section> sections,
+                               SolverOptions options)
+    : elements_(mesh, std::move(sections)), options_(options) {
+  std::string err;
+  if (!options_.IsValid(&err)) throw InputError(err);
+  const int nn = mesh.num_nodes();
+  state_.Resize(nn);
+  state_.x0 = mesh.x, state_.y0 = mesh.y, state_.x = mesh.x, state_.y = mesh.y;
+  elements_.AddLumpedMass(&state_);
+  node_part_.assign(nn, -1);
+  for (int e = mesh.num_elements() - 1; e >= 0; --e)
+    for (int id : mesh.quads[e]) node_part_[id] = mesh.element_part[e];
+  for (int i = 0; i < nn; ++i)
+    if (!(state_.mass[i] > 0.0)) {
+      std::ostringstream os;
+      os << "solver: node " << i << " belongs to no element (zero mass)";
+      throw InputError(os.str());
+    }
+  constrained_.assign(nn, 0);
+  part_rigid_.assign(5 * static_cast<size_t>(mesh.num_parts()), 0.0);
+  const int nchunks = (nn + kNodeChunk - 1) / kNodeChunk;
+  chunk_sums_.assign(static_cast<size_t>(nchunks) * mesh.num_parts() * kRigidSums, 0.0);
+}
+
+void ExplicitSolver::AddContributor(ForceContributor* c) {
+  SPALLKIT_CHECK(c != nullptr, "null contributor");
+  SPALLKIT_CHECK(!initialized_, "add contributors before the first step");
+  contributors_.push_back(c);
+}
+
+int ExplicitSolver::AddRigidBody(RigidBody body) {
+  SPALLKIT_CHECK(!initialized_, "add constraints before the first step");
+  for (int id : body.nodes) {
+    if (id < 0 || id >= static_cast<int>(state_.size()))
+      throw InputError("rigid body '" + body.name + "': node id out of range");
+    if (constrained_[id])
+      throw InputError("rigid body '" + body.name + "': node already constrained");
+    constrained_[id] = 1;
+  }
+  if (!(body.extra_mass >= 0.0))
+    throw InputError("rigid body '" + body.name + "': extra_mass must be >= 0");
+  rigid_bodies_.push_back(std::move(body));
+  RigidBodyState st;
+  st.x = rigid_bodies_.back().ref_x, st.y = rigid_bodies_.back().ref_y;
+  rigid_states_.push_back(st);
+  return static_cast<int>(rigid_bodies_.size()) - 1;
+}
+
+void ExplicitSolver::AddVelocityCondition(VelocityCondition c) {
+  SPALLKIT_CHECK(!initialized_, "add constraints before the first step");
+  if (c.vx.size() != c.nodes.size() || c.vy.size() != c.nodes.size())
+    throw InputError("velocity condition: vx and vy need one value per node");
+  for (int id : c.nodes) {
+    if (id < 0 || id >= static_cast<int>(state_.size()))
+      throw InputError("velocity condition: node id out of range");
+    if (constrained_[id] == 1) throw InputError("velocity condition: node already in a rigid body");
+    constrained_[id] = 2;
+  }
+  velocity_conditions_.push_back(std::move(c));
+}
+
+void ExplicitSolver::FixNodes(const std::vector<int>& nodes, bool fix_x, bool fix_y) {
+  VelocityCondition c;
+  c.nodes = nodes;
+  c.vx.assign(nodes.size(), 0.0);
+  c.vy.assign(nodes.size(), 0.0);
+  c.fix_x = fix_x, c.fix_y = fix_y;
+  AddVelocityCondition(std::move(c));
+}
+
+void ExplicitSolver::SetRigidVelocity(
+    const std::vector<int>& nodes, double vx, double vy, double omega, double cx, double cy) {
+  for (int id : nodes) {
+    state_.vx[id] = vx - omega * (state_.y[id] - cy);
+    state_.vy[id] = vy + omega * (state_.x[id] - cx);
+  }
+}
+
+void ExplicitSolver::Initialize() {
+  threads_ = options_.num_threads > 0 ? options_.num_threads : omp_get_max_threads();
+  mass_damping_ = 4.0 * kPi * options_.mass_damping_ratio * options_.damping_frequency;
+  if (options_.stiffness_damping_ratio > 0.0)
+    elements_.set_stiffness_damping(options_.stiffness_damping_ratio /
+                                    (kPi * options_.stiffness_damping_frequency));
+  for (auto* v : {&old_vx_, &old_vy_, &old_x_, &old_y_})
+    v->assign(state_.size(), 0.0);  // constrained nodes only
+  // Rigid bodies start with the momentum-weighted velocity of their nodes.
+  for (size_t b = 0; b < rigid_bodies_.size(); ++b) {
+    double m = 0, px = 0, py = 0;
+    for (int id : rigid_bodies_[b].nodes)
+      m += state_.mass[id], px += state_.mass[id] * state_.vx[id],
+          py += state_.mass[id] * state_.vy[id];
+    if (m > 0) rigid_states_[b].vx = px / m, rigid_states_[b].vy = py / m;
+    if (rigid_bodies_[b].angle) rigid_states_[b].angle = rigid_bodies_[b].angle(0.0);
+  }
+  double ke = 0.0;
+  for (size_t i = 0; i < state_.size(); ++i)
+    ke += 0.5 * state_.mass[i] * (state_.vx[i] * state_.vx[i] + state_.vy[i] * state_.vy[i]);
+  for (size_t b = 0; b < rigid_bodies_.size(); ++b)
+    ke += 0.5 * rigid_bodies_[b].extra_mass *
+          (rigid_states_[b].vx * rigid_states_[b].vx + rigid_states_[b].vy * rigid_states_[b].vy);
+  initial_kinetic_ = ke;
+  initialized_ = true;
+  next_output_time_ = options_.output_interval;
+  if (callback_) callback_(*this);
+  last_output_step_ = 0;
+}
+
+void ExplicitSolver::ComputePartRigidMotion() {
+  const int nn = static_cast<int>(state_.size()), np = elements_.num_parts();
+  const int nchunks = (nn + kNodeChunk - 1) / kNodeChunk;
+#pragma omp parallel for schedule(static) num_threads(threads_)
+  for (int c = 0; c < nchunks; ++c) {
+    double* sums = &chunk_sums_[static_cast<size_t>(c) * np * kRigidSums];
+    std::fill(sums, sums + np * kRigidSums, 0.0);
+    const int end = std::min(nn, (c + 1) * kNodeChunk);
+    for (int i = c * kNodeChunk; i < end; ++i) {
+      double* s = sums + node_part_[i] * kRigidSums;
+      const double m = state_.mass[i], x = state_.x[i], y = state_.y[i], vx = state_.vx[i],
+                   vy = state_.vy[i];
+      s[0] += m, s[1] += m * x, s[2] += m * y, s[3] += m * vx, s[4] += m * vy;
+      s[5] += m * (x * vy - y * vx), s[6] += m * (x * x + y * y);
+    }
+  }
+  for (int p = 0; p < np; ++p) {
+    double t[kRigidSums] = {0, 0, 0, 0, 0, 0, 0};
+    for (int c = 0; c < nchunks; ++c)
+      for (int k = 0; k < kRigidSums; ++k)
+        t[k] += chunk_sums_[(static_cast<size_t>(c) * np + p) * kRigidSums + k];
+    double* r = &part_rigid_[5 * static_cast<size_t>(p)];
+    if (!(t[0] > 0.0)) {
+      std::fill(r, r + 5, 0.0);
+      continue;
+    }
+    const double cx = t[1] / t[0], cy = t[2] / t[0], vx = t[3] / t[0], vy = t[4] / t[0];
+    const double lz = t[5] - t[0] * (cx * vy - cy * vx);
+    const double j = t[6] - t[0] * (cx * cx + cy * cy);
+    r[0] = vx, r[1] = vy, r[2] = j > 0.0 ? lz / j : 0.0, r[3] = cx, r[4] = cy;
+  }
+}
+
+void ExplicitSolver::PartRigidMotion(int part, double* vx, double* vy, double* omega) const {
+  // Recomputed from the current velocities (cheap, serial, for callers and tests).
+  double t[kRigidSums] = {0, 0, 0, 0, 0, 0, 0};
+  for (size_t i = 0; i < state_.size(); ++i) {
+    if (node_part_[i] != part) continue;
+    const double m = state_.mass[i], x = state_.x[i], y = state_.y[i], u = state_.vx[i],
+                 w = state_.vy[i];
+    t[0] += m, t[1] += m * x, t[2] += m * y, t[3] += m * u, t[4] += m * w,
+        t[5] += m * (x * w - y * u), t[6] += m * (x * x + y * y);
+  }
+  const double cx = t[1] / t[0], cy = t[2] / t[0];
+  *vx = t[3] / t[0], *vy = t[4] / t[0];
+  *omega = (t[5] - t[0] * (cx * *vy - cy * *vx)) / (t[6] - t[0] * (cx * cx + cy * cy));
+}
+
+void ExplicitSolver::Step() {
+  if (!initialized_) Initialize();
+  const double h = dt_prev_;
+  double dt = options_.time_step_scale * elements_.ComputeCornerForces(state_, h, threads_);
+  dt = std::min(dt, options_.max_time_step);
+  for (ForceContributor* c : contributors_) dt = std::min(dt, c->StableTimeStep(state_));
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    std::ostringstream os;
+    os << "solver: invalid time step " << dt << " at t = " << time_ << " s (step " << step_ << ")";
+    throw NumericalError(os.str());
+  }
+  elements_.GatherForces(&state_, threads_);
+  for (ForceContributor* c : contributors_) c->AddForces(state_, time_, dt);
+
+  const bool damp = mass_damping_ > 0.0;
+  const bool relative = damp && options_.damping_relative_to_rigid_motion;
+  if (relative) ComputePartRigidMotion();
+
+  // Remember v^(n-1/2) of constrained nodes (reaction work).
+  auto remember = [&](int id) {
+    old_vx_[id] = state_.vx[id], old_vy_[id] = state_.vy[id], old_x_[id] = state_.x[id],
+    old_y_[id] = state_.y[id];
+  };
+  for (const auto& b : rigid_bodies_)
+    for (int id : b.nodes) remember(id);
+  for (const auto& c : velocity_conditions_)
+    for (int id : c.nodes) remember(id);
+
+  const double dt_avg = 0.5 * (h + dt);
+  const int nn = static_cast<int>(state_.size());
+  const int nchunks = (nn + kNodeChunk - 1) / kNodeChunk;
+  const double ad = mass_damping_ * dt_avg * 0.5;
+  const double c_old = 1.0 - ad, c_inv = 1.0 / (1.0 + ad);
+  double* chunk_work = chunk_sums_.data();  // reuse scratch: one value per chunk
+#pragma omp parallel for schedule(static) num_threads(threads_)
+  for (int c = 0; c < nchunks; ++c) {
+    const int end = std::min(nn, (c + 1) * kNodeChunk);
+    double* __restrict x = state_.x.data();
+    double* __restrict y = state_.y.data();
+    double* __restrict vx = state_.vx.data();
+    double* __restrict vy = state_.vy.data();
+    const double* __restrict fx = state_.fx.data();
+    const double* __restrict fy = state_.fy.data();
+    const double* __restrict m = state_.mass.data();
+    double work = 0.0;
+    if (!damp) {
+#pragma omp simd
+      for (int i = c * kNodeChunk; i < end; ++i) {
+        const double s = dt_avg / m[i];
+        vx[i] += s * fx[i], vy[i] += s * fy[i];
+        x[i] += dt * vx[i], y[i] += dt * vy[i];
+      }
+    } else {
+      for (int i = c * kNodeChunk; i < end; ++i) {
+        double rvx = 0.0, rvy = 0.0;
+        if (relative) {
+          const double* r = &part_rigid_[5 * static_cast<size_t>(node_part_[i])];
+          rvx = r[0] - r[2] * (y[i] - r[4]);
+          rvy = r[1] + r[2] * (x[i] - r[3]);
+        }
+        const double s = dt_avg / m[i];
+        const double ux0 = vx[i] - rvx, uy0 = vy[i] - rvy;
+        const double ux1 = (c_old * ux0 + s * fx[i]) * c_inv,
+                     uy1 = (c_old * uy0 + s * fy[i]) * c_inv;
+        const double vx1 = rvx + ux1, vy1 = rvy + uy1;
+        if (!constrained_[i])
+          work += m[i] * mass_damping_ * dt_avg * 0.25 *
+                  ((ux0 + ux1) * (vx[i] + vx1) + (uy0 + uy1) * (vy[i] + vy1));
+        vx[i] = vx1, vy[i] = vy1;
+        x[i] += dt * vx1, y[i] += dt * vy1;
+      }
+    }
+    chunk_work[c] = work;
+  }
+  if (damp)
+    for (int c = 0; c < nchunks; ++c) damping_work_ += chunk_work[c];
+
+  ApplyConstraints(dt, dt_avg, time_ + 0.5 * dt, time_ + dt);
+  time_ += dt;
+  dt_prev_ = dt;
+  dt_ = dt;
+  ++step_;
+  MaybeOutput(false);
+}
+
+void ExplicitSolver::ApplyConstraints(double dt, double dt_avg, double t_half, double t_next) {
+  fe::NodalState& s = state_;
+  auto node_work = [&](int id) {  // work of the constraint on node id over the step
+    const double m = s.mass[id];
+    const double ke = 0.5 * m *
+                      (s.vx[id] * s.vx[id] + s.vy[id] * s.vy[id] - old_vx_[id] * old_vx_[id] -
+                       old_vy_[id] * old_vy_[id]);
+    return ke - dt_avg * 0.5 *
+                    (s.fx[id] * (s.vx[id] + old_vx_[id]) + s.fy[id] * (s.vy[id] + old_vy_[id]));
+  };
+  for (size_t b = 0; b < rigid_bodies_.size(); ++b) {
+    const RigidBody& body = rigid_bodies_[b];
+    RigidBodyState& st = rigid_states_[b];
+    double mass = body.extra_mass, fx = 0.0, fy = 0.0;
+    for (int id : body.nodes) mass += s.mass[id], fx += s.fx[id], fy += s.fy[id];
+    const double ax = body.force_x ? body.force_x(time_) : 0.0;
+    const double ay = body.force_y ? body.force_y(time_) : 0.0;
+    const double vx0 = st.vx, vy0 = st.vy, x0 = st.x, y0 = st.y;
+    if (body.x_motion) {
+      st.x = body.ref_x + body.x_motion(t_next);
+      st.vx = (st.x - x0) / dt;
+      st.reaction_x = mass * (st.vx - vx0) / dt_avg - fx - ax;
+    } else {
+      st.vx = vx0 + dt_avg * (fx + ax) / mass;
+      st.x = x0 + dt * st.vx;
+      st.reaction_x = 0.0;
+    }
+    if (body.y_motion) {
+      st.y = body.ref_y + body.y_motion(t_next);
+      st.vy = (st.y - y0) / dt;
+      st.reaction_y = mass * (st.vy - vy0) / dt_avg - fy - ay;
+    } else {
+      st.vy = vy0 + dt_avg * (fy + ay) / mass;
+      st.y = y0 + dt * st.vy;
+      st.reaction_y = 0.0;
+    }
+    st.angle = body.angle ? body.angle(t_next) : 0.0;
+    const double c = std::cos(st.angle), sn = std::sin(st.angle);
+    double work = 0.0;
+    for (int id : body.nodes) {
+      const double rx = s.x0[id] - body.ref_x, ry = s.y0[id] - body.ref_y;
+      const double tx = st.x + c * rx - sn * ry, ty = st.y + sn * rx + c * ry;
+      s.vx[id] = (tx - old_x_[id]) / dt;
+      s.vy[id] = (ty - old_y_[id]) / dt;
+      s.x[id] = tx, s.y[id] = ty;
+      work += node_work(id);
+    }
+    work += 0.5 * body.extra_mass * (st.vx * st.vx + st.vy * st.vy - vx0 * vx0 - vy0 * vy0);
+    const double wl = dt_avg * 0.5 * (ax * (st.vx + vx0) + ay * (st.vy + vy0));
+    load_work_ += wl;
+    reaction_work_ += work - wl;
+  }
+  for (const auto& vc : velocity_conditions_) {
+    const double sc = vc.scale ? vc.scale(t_half) : 1.0;
+    for (size_t k = 0; k < vc.nodes.size(); ++k) {
+      const int id = vc.nodes[k];
+      if (vc.fix_x) {
+        s.vx[id] = sc * vc.vx[k];
+        s.x[id] = old_x_[id] + dt * s.vx[id];
+      }
+      if (vc.fix_y) {
+        s.vy[id] = sc * vc.vy[k];
+        s.y[id] = old_y_[id] + dt * s.vy[id];
+      }
+      reaction_work_ += node_work(id);
+    }
+  }
+}
+
+void ExplicitSolver::MaybeOutput(bool force) {
+  bool due = force;
+  if (options_.output_every_steps > 0 && step_ % options_.output_every_steps == 0) due = true;
+  if (options_.output_interval > 0.0 && time_ >= next_output_time_) {
+    due = true;
+    while (next_output_time_ <= time_) next_output_time_ += options_.output_interval;
+  }
+  if (!due || last_output_step_ == step_) return;
+  last_output_step_ = step_;
+  if (options_.max_energy_error > 0.0) {
+    const Energies e = energies();
+    double largest = e.initial_kinetic;
+    for (double v :
+         {e.kinetic, e.internal, e.hourglass, e.contact, e.friction, e.damping, e.external})
+      largest = std::max(largest, std::abs(v));
+    if (largest > options_.energy_check_floor && e.BalanceError() > options_.max_energy_error) {
+      std::ostringstream os;
+      os << "solver: energy balance error " << e.BalanceError() << " exceeds "
+         << options_.max_energy_error << " at t = " << time_ << " s (step " << step_ << ")";
+      throw NumericalError(os.str());
+    }
+  }
+  if (callback_) callback_(*this);
+}
+
+Energies ExplicitSolver::energies() const {
+  Energies e;
+  const int nn = static_cast<int>(state_.size());
+  const int nchunks = (nn + kNodeChunk - 1) / kNodeChunk;
+  for (int c = 0; c < nchunks; ++c) {
+    double k = 0.0;
+    const int end = std::min(nn, (c + 1) * kNodeChunk);
+    for (int i = c * kNodeChunk; i < end; ++i)
+      k += state_.mass[i] * (state_.vx[i] * state_.vx[i] + state_.vy[i] * state_.vy[i]);
+    e.kinetic += 0.5 * k;
+  }
+  for (size_t b = 0; b < rigid_bodies_.size(); ++b)
+    e.kinetic +=
+        0.5 * rigid_bodies_[b].extra_mass *
+        (rigid_states_[b].vx * rigid_states_[b].vx + rigid_states_[b].vy * rigid_states_[b].vy);
+  e.initial_kinetic = initialized_ ? initial_kinetic_ : e.kinetic;
+  e.internal = elements_.InternalEnergy();
+  e.hourglass = elements_.HourglassEnergy();
+  e.damping = damping_work_ + elements_.DampingEnergy();
+  e.external_loads = load_work_;
+  for (const ForceContributor* c : contributors_) {
+    e.contact += c->StoredEnergy();
+    e.friction += c->DissipatedEnergy();
+    e.external_loads += c->ExternalWork();
+  }
+  e.external = e.external_loads + reaction_work_;
+  return e;
+}
+
+SolverSummary ExplicitSolver::Run(double end_time) {
+  if (!initialized_) Initialize();
+  SolverSummary sum;
+  sum.min_time_step = std::numeric_limits<double>::infinity();
+  const long first = step_;
+  const auto t0 = std::chrono::steady_clock::now();
+  while (time_ < end_time) {
+    Step();
+    sum.min_time_step = std::min(sum.min_time_step, dt_);
+    sum.max_time_step = std::max(sum.max_time_step, dt_);
+  }
+  const auto t1 = std::chrono::steady_clock::now();
+  sum.steps = step_ - first;
+  sum.time = time_;
+  sum.wall_seconds = std::chrono::duration<double>(t1 - t0).count();
+  sum.threads = threads_;
+  if (sum.steps > 0 && elements_.num_elements() > 0)
+    sum.ns_per_element_cycle =
+        1e9 * sum.wall_seconds / (static_cast<double>(sum.steps) * elements_.num_elements());
+  if (sum.steps == 0) sum.min_time_step = 0.0;
+  sum.energies = energies();
+  return sum;
+}
+
+void ExplicitSolver::SaveCheckpoint(const std::string& path) const {
+  std::ostringstream out(std::ios::binary);
+  out.write(kMagic, sizeof kMagic);
+  Put<std::uint64_t>(out, state_.size());
+  Put<std::uint64_t>(out, elements_.num_elements());
+  Put<std::uint64_t>(out, rigid_bodies_.size());
+  Put<std::uint64_t>(out, contributors_.size());
+  Put(out, initialized_);
+  Put(out, time_), Put(out, dt_), Put(out, dt_prev_), Put(out, next_output_time_);
+  Put(out, step_), Put(out, last_output_step_);
+  Put(out, damping_work_), Put(out, reaction_work_), Put(out, load_work_),
+      Put(out, initial_kinetic_);
+  for (const auto* v : {&state_.x, &state_.y, &state_.vx, &state_.vy}) PutVec(out, *v);
+  elements_.Save(out);
+  for (const auto& st : rigid_states_) Put(out, st);
+  for (const ForceContributor* c : contributors_) {
+    const std::string name = c->Name(), blob = c->SaveState();
+    Put<std::uint64_t>(out, name.size());
+    out.write(name.data(), static_cast<std::streamsize>(name.size()));
+    Put<std::uint64_t>(out, blob.size());
+    out.write(blob.data(), static_cast<std::streamsize>(blob.size()));
+  }
+  WriteFileAtomically(path, out.str());
+}
+
+void ExplicitSolver::LoadCheckpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open checkpoint");
+  char magic[8];
+  in.read(magic, sizeof magic);
+  if (!in || !std::equal(magic, magic + 8, kMagic))
+    throw InputError(path + ": not a spallkit solver checkpoint");
+  try {
+    if (Get<std::uint64_t>(in) != state_.size() ||
+        Get<std::uint64_t>(in) != static_cast<std::uint64_t>(elements_.num_elements()) ||
+        Get<std::uint64_t>(in) != rigid_bodies_.size() ||
+        Get<std::uint64_t>(in) != contributors_.size())
+      throw InputError(
+          "checkpoint: model size (nodes, elements, rigid bodies or contributors) differs");
+    const bool was_initialized = Get<bool>(in);
+    if (!initialized_) {
+      // Set up scratch, damping constants and threads without calling the t = 0 output.
+      auto cb = std::move(callback_);
+      callback_ = nullptr;
+      Initialize();
+      callback_ = std::move(cb);
+    }
+    (void)was_initialized;
+    time_ = Get<double>(in), dt_ = Get<double>(in), dt_prev_ = Get<double>(in),
+    next_output_time_ = Get<double>(in);
+    step_ = Get<long>(in), last_output_step_ = Get<long>(in);
+    damping_work_ = Get<double>(in), reaction_work_ = Get<double>(in), load_work_ = Get<double>(in);
+    initial_kinetic_ = Get<double>(in);
+    GetVec(in, &state_.x, "x"), GetVec(in, &state_.y, "y"), GetVec(in, &state_.vx, "vx"),
+        GetVec(in, &state_.vy, "vy");
+    elements_.Load(in);
+    for (auto& st : rigid_states_) st = Get<RigidBodyState>(in);
+    for (ForceContributor* c : contributors_) {
+      std::string name(Get<std::uint64_t>(in), '\0');
+      in.read(name.data(), static_cast<std::streamsize>(name.size()));
+      std::string blob(Get<std::uint64_t>(in), '\0');
+      in.read(blob.data(), static_cast<std::streamsize>(blob.size()));
+      if (!in) throw InputError("checkpoint: file is truncated");
+      if (name != c->Name())
+        throw InputError("checkpoint: contributor '" + name + "' where '" + c->Name() +
+                         "' was expected");
+      c->LoadState(blob);
+    }
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+}
+
+}  // namespace spallkit::solver
