@@ -3,8 +3,11 @@
 // A Record is the input of every diagnosis stage: uniformly sampled samples of one channel, its
 // sample rate, and where it came from. Readers validate everything a later stage would silently
 // get wrong (non-uniform time, NaN, a missing cell) and throw spallkit::InputError with ONE line
-// that names the file, the line (and column) and what was expected, e.g.
-//   "run.csv:17: column 2 ('accel_g'): expected a number, found 'abc'"
+// that names the file, the line (and field) and what was expected, e.g.
+//   "run.csv:17: field 2 ('accel_g'): expected a number, found 'abc'"
+// Line numbers count every line of the file from 1 (comments and blank lines included); "field k"
+// counts the cells of a line from 1, as text editors and spreadsheets do. (The channel INDEX
+// below is different: 0-based over signal columns.)
 //
 // ---------------------------------------------------------------------------------------------
 // CSV / text rules (ReadCsvRecord)
@@ -24,12 +27,15 @@
 //    scaled to seconds. Without a header: column 0 is taken as time when the file has at least
 //    2 columns and 3 rows and column 0 is strictly increasing and uniform (rule below). A ramp
 //    signal in column 0 would therefore be taken as time; give a header to avoid that.
-//  * Uniform time: the step is dt = (t_last - t_first)/(n - 1); every time must lie within
-//        tol = 1e-4 * dt + 2 * q
-//    of t_first + i*dt, where q is half the printing resolution of the coarsest time cell
-//    (e.g. q = 5e-10 for "0.000083333"): times written with 9 decimals at 48 kHz carry a
-//    rounding error of 2.4e-5 steps, which is not jitter. A time that does not increase is
-//    reported as "decreasing time" at its line; one off the grid as "non-uniform time".
+//  * Uniform time: the step is dt = (t_last - t_first)/(n - 1); time must strictly increase and
+//    every time must lie within
+//        tol_i = 1e-4 * dt + q_i + max(q_first, q_last)
+//    of t_first + i*dt. q_i is the writer's rounding of t_i, estimated from the printed digits
+//    (half a unit of the finest last digit seen in the column, or of the most significant digits
+//    seen, whichever is larger at t_i) and capped at 0.05*dt. So "%.9f" times at 48 kHz (rounding
+//    2.4e-5 step) and "%g" times pass, real jitter above 1e-4 step in exactly printed times is
+//    reported, and a gap of a whole step is always caught. A time that does not increase is
+//    reported as "does not increase" at its line; one off the grid as "non-uniform time".
 //  * Sample rate, first match wins: RecordOptions::sample_rate_hz (> 0; the time column is then
 //    not checked), the "# fs=" comment (checked against the time column if both exist: they must
 //    agree within 1e-4), 1/dt from the time column. None of them: InputError asking for fs.
