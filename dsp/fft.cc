@@ -3,6 +3,7 @@
 #include <fftw3.h>
 
 #include <cstring>
+#include <map>
 #include <mutex>
 
 #include "core/error.h"
@@ -10,17 +11,71 @@
 namespace spallkit::dsp {
 namespace {
 
+enum class Kind { kR2c, kC2r, kC2c };
+
+struct PlanKey {
+  Kind kind;
+  int n, sign, howmany;
+  bool inplace;
+  PlanRigor rigor;
+  auto operator<=>(const PlanKey&) const = default;
+};
+
 // FFTW's planner (plan creation and destruction) is not thread-safe; execution is.
 std::mutex& PlannerMutex() {
   static std::mutex mutex;
   return mutex;
 }
 
-unsigned Flags(PlanRigor rigor) {
-  return rigor == PlanRigor::kMeasure ? FFTW_MEASURE : FFTW_ESTIMATE;
+std::map<PlanKey, fftw_plan>& PlanCache() {
+  static std::map<PlanKey, fftw_plan> cache;
+  return cache;
 }
 
 fftw_complex* AsFftw(std::complex<double>* p) { return reinterpret_cast<fftw_complex*>(p); }
+
+// The cached plan for a key, made on first use on temporary fftw_malloc'ed arrays (so
+// FFTW_MEASURE never overwrites caller data). fftw_malloc gives every array the same SIMD
+// alignment, which is what new-array execution requires.
+fftw_plan CachedPlan(const PlanKey& key) {
+  std::lock_guard<std::mutex> lock(PlannerMutex());
+  auto& cache = PlanCache();
+  if (auto it = cache.find(key); it != cache.end()) return it->second;
+  const unsigned flags = key.rigor == PlanRigor::kMeasure ? FFTW_MEASURE : FFTW_ESTIMATE;
+  const size_t total = static_cast<size_t>(key.n) * key.howmany;
+  fftw_plan plan = nullptr;
+  switch (key.kind) {
+    case Kind::kR2c: {
+      double* in = fftw_alloc_real(key.n);
+      fftw_complex* out = fftw_alloc_complex(key.n / 2 + 1);
+      plan = fftw_plan_dft_r2c_1d(key.n, in, out, flags);
+      fftw_free(in);
+      fftw_free(out);
+      break;
+    }
+    case Kind::kC2r: {
+      fftw_complex* in = fftw_alloc_complex(key.n / 2 + 1);
+      double* out = fftw_alloc_real(key.n);
+      plan = fftw_plan_dft_c2r_1d(key.n, in, out, flags);
+      fftw_free(in);
+      fftw_free(out);
+      break;
+    }
+    case Kind::kC2c: {
+      int n = key.n;
+      fftw_complex* in = fftw_alloc_complex(total);
+      fftw_complex* out = key.inplace ? in : fftw_alloc_complex(total);
+      plan = fftw_plan_many_dft(
+          1, &n, key.howmany, in, nullptr, 1, n, out, nullptr, 1, n, key.sign, flags);
+      if (out != in) fftw_free(out);
+      fftw_free(in);
+      break;
+    }
+  }
+  SPALLKIT_CHECK(plan, "FFTW could not plan a transform of size " << key.n);
+  cache.emplace(key, plan);
+  return plan;
+}
 
 bool SameAlignment(const void* a, const void* b) {
   return fftw_alignment_of(const_cast<double*>(static_cast<const double*>(a))) ==
@@ -29,35 +84,37 @@ bool SameAlignment(const void* a, const void* b) {
 
 }  // namespace
 
+void ForgetFftPlans() {
+  std::lock_guard<std::mutex> lock(PlannerMutex());
+  for (auto& [key, plan] : PlanCache()) fftw_destroy_plan(plan);
+  PlanCache().clear();
+  fftw_cleanup();
+}
+
 RealFft::RealFft(int n, PlanRigor rigor) : n_(n) {
   SPALLKIT_CHECK(n >= 1, "RealFft size must be positive, got " << n);
-  std::lock_guard<std::mutex> lock(PlannerMutex());
-  real_ = static_cast<double*>(fftw_malloc(sizeof(double) * n));
-  spec_ = static_cast<std::complex<double>*>(fftw_malloc(sizeof(fftw_complex) * (n / 2 + 1)));
-  // FFTW_MEASURE overwrites the arrays while planning; they are scratch here, so that is fine.
-  forward_ = fftw_plan_dft_r2c_1d(n, real_, AsFftw(spec_), Flags(rigor));
-  inverse_ = fftw_plan_dft_c2r_1d(n, AsFftw(spec_), real_, Flags(rigor));
-  SPALLKIT_CHECK(forward_ && inverse_, "FFTW could not plan a real transform of size " << n);
+  forward_ = CachedPlan({Kind::kR2c, n, 0, 1, false, rigor});
+  inverse_ = CachedPlan({Kind::kC2r, n, 0, 1, false, rigor});
+  real_ = fftw_alloc_real(n);
+  spec_ = reinterpret_cast<std::complex<double>*>(fftw_alloc_complex(n / 2 + 1));
 }
 
 RealFft::~RealFft() {
-  std::lock_guard<std::mutex> lock(PlannerMutex());
-  fftw_destroy_plan(static_cast<fftw_plan>(forward_));
-  fftw_destroy_plan(static_cast<fftw_plan>(inverse_));
   fftw_free(real_);
   fftw_free(spec_);
 }
 
 void RealFft::Forward(const double* in, std::complex<double>* out) {
   const auto plan = static_cast<fftw_plan>(forward_);
-  // The r2c out-of-place plan preserves its input, so the caller's array can be used directly.
+  // The r2c out-of-place plan preserves its input, so the caller's arrays are used directly
+  // when their alignment matches the plan's.
   if (SameAlignment(in, real_) && SameAlignment(out, spec_) &&
       static_cast<const void*>(in) != static_cast<const void*>(out)) {
     fftw_execute_dft_r2c(plan, const_cast<double*>(in), AsFftw(out));
     return;
   }
   std::memcpy(real_, in, sizeof(double) * n_);
-  fftw_execute(plan);
+  fftw_execute_dft_r2c(plan, real_, AsFftw(spec_));
   std::memcpy(static_cast<void*>(out), spec_, sizeof(fftw_complex) * (n_ / 2 + 1));
 }
 
@@ -69,7 +126,7 @@ void RealFft::Inverse(const std::complex<double>* in, double* out) {
     fftw_execute_dft_c2r(plan, AsFftw(spec_), out);
     return;
   }
-  fftw_execute(plan);
+  fftw_execute_dft_c2r(plan, AsFftw(spec_), real_);
   std::memcpy(out, real_, sizeof(double) * n_);
 }
 
@@ -77,45 +134,21 @@ ComplexFft::ComplexFft(int n, int sign, int howmany, PlanRigor rigor)
     : n_(n), sign_(sign), howmany_(howmany), rigor_(rigor) {
   SPALLKIT_CHECK(n >= 1 && howmany >= 1, "ComplexFft size " << n << " x " << howmany);
   SPALLKIT_CHECK(sign == FFTW_FORWARD || sign == FFTW_BACKWARD, "ComplexFft sign " << sign);
-  std::lock_guard<std::mutex> lock(PlannerMutex());
-  const size_t total = static_cast<size_t>(n) * howmany;
-  in_ = static_cast<std::complex<double>*>(fftw_malloc(sizeof(fftw_complex) * total));
-  out_ = static_cast<std::complex<double>*>(fftw_malloc(sizeof(fftw_complex) * total));
-  plan_ = fftw_plan_many_dft(
-      1, &n_, howmany, AsFftw(in_), nullptr, 1, n, AsFftw(out_), nullptr, 1, n, sign, Flags(rigor));
-  SPALLKIT_CHECK(plan_, "FFTW could not plan a complex transform of size " << n);
+  plan_ = CachedPlan({Kind::kC2c, n, sign, howmany, false, rigor});
 }
 
 ComplexFft::~ComplexFft() {
-  std::lock_guard<std::mutex> lock(PlannerMutex());
-  fftw_destroy_plan(static_cast<fftw_plan>(plan_));
-  if (plan_inplace_) fftw_destroy_plan(static_cast<fftw_plan>(plan_inplace_));
   fftw_free(in_);
   fftw_free(out_);
 }
 
 void ComplexFft::Execute(const std::complex<double>* in, std::complex<double>* out) {
-  const size_t bytes = sizeof(fftw_complex) * static_cast<size_t>(n_) * howmany_;
+  const size_t total = static_cast<size_t>(n_) * howmany_;
+  const size_t bytes = sizeof(fftw_complex) * total;
   if (in == out) {
-    if (!plan_inplace_) {
-      std::lock_guard<std::mutex> lock(PlannerMutex());
-      // Planned on the scratch array (FFTW_MEASURE would overwrite the caller's data).
-      plan_inplace_ = fftw_plan_many_dft(1,
-                                         &n_,
-                                         howmany_,
-                                         AsFftw(in_),
-                                         nullptr,
-                                         1,
-                                         n_,
-                                         AsFftw(in_),
-                                         nullptr,
-                                         1,
-                                         n_,
-                                         sign_,
-                                         Flags(rigor_));
-      SPALLKIT_CHECK(plan_inplace_, "FFTW could not plan an in-place transform of size " << n_);
-    }
+    if (!plan_inplace_) plan_inplace_ = CachedPlan({Kind::kC2c, n_, sign_, howmany_, true, rigor_});
     const auto plan = static_cast<fftw_plan>(plan_inplace_);
+    if (!in_) in_ = reinterpret_cast<std::complex<double>*>(fftw_alloc_complex(total));
     if (SameAlignment(out, in_)) {
       fftw_execute_dft(plan, AsFftw(out), AsFftw(out));
     } else {
@@ -126,14 +159,16 @@ void ComplexFft::Execute(const std::complex<double>* in, std::complex<double>* o
     return;
   }
   const auto plan = static_cast<fftw_plan>(plan_);
+  if (!in_) in_ = reinterpret_cast<std::complex<double>*>(fftw_alloc_complex(total));
   // Out-of-place complex plans preserve their input by default (only c2r destroys it), so the
   // caller's arrays are used directly when their alignment matches the plan's.
-  if (SameAlignment(in, in_) && SameAlignment(out, out_)) {
+  if (SameAlignment(in, in_) && SameAlignment(out, in_)) {
     fftw_execute_dft(plan, AsFftw(const_cast<std::complex<double>*>(in)), AsFftw(out));
     return;
   }
+  if (!out_) out_ = reinterpret_cast<std::complex<double>*>(fftw_alloc_complex(total));
   std::memcpy(static_cast<void*>(in_), in, bytes);
-  fftw_execute(plan);
+  fftw_execute_dft(plan, AsFftw(in_), AsFftw(out_));
   std::memcpy(static_cast<void*>(out), out_, bytes);
 }
 

@@ -1,17 +1,19 @@
-// FFTW plans owned by small RAII objects.
+// FFTW transforms behind small objects, with plans made once per process and reused.
 //
-// Each object makes its plan once, in the constructor, and reuses it for every call, so the
-// planner never runs in an inner loop. Plans are made with FFTW_ESTIMATE by default: planning a
-// 480,000-point transform with FFTW_MEASURE takes around a second, far more than it saves for a
-// record analysed once; pass PlanRigor::kMeasure for transforms reused thousands of times.
-// FFTW's planner is not thread-safe, so plan creation and destruction are serialised by a global
-// mutex; executing is thread-safe across objects but one object must not be used by two threads
-// at once (it owns its scratch buffers).
+// Planning is the expensive part of FFTW for large sizes: even with FFTW_ESTIMATE a 480,000-point
+// real plan costs about as much as several executions (twiddle tables are rebuilt whenever the
+// last plan using them is destroyed). So plans live in a process-wide cache keyed by kind, size,
+// batch count and placement, are created on first use under a mutex (FFTW's planner is not
+// thread-safe) and kept until ForgetFftPlans() or exit. Execution uses FFTW's new-array interface
+// on each object's own aligned scratch buffers, so different objects may run concurrently in
+// different threads; one object must not be used by two threads at once.
+//
+// Rigor: FFTW_ESTIMATE by default. FFTW_MEASURE finds faster plans for awkward sizes but planning
+// a 480,000-point transform that way takes seconds, far more than a record analysed once saves;
+// PlanRigor::kMeasure is there for sizes reused thousands of times.
 //
 // Data are passed as raw pointers to std::complex<double>, which is layout-compatible with
-// fftw_complex. When the caller's arrays have the alignment the plan was made for, FFTW runs on
-// them directly (new-array execute); otherwise the data are copied through aligned scratch.
-// Transforms are unnormalised, as in FFTW: Forward then Inverse multiplies by n.
+// fftw_complex. Transforms are unnormalised, as in FFTW: Forward then Inverse multiplies by n.
 #pragma once
 
 #include <complex>
@@ -66,10 +68,14 @@ class ComplexFft {
   int n_, sign_, howmany_;
   std::complex<double>* in_ = nullptr;
   std::complex<double>* out_ = nullptr;
-  void* plan_ = nullptr;          // out of place
-  void* plan_inplace_ = nullptr;  // made on first in-place call
+  void* plan_ = nullptr;          // cached fftw_plan (out of place), not owned
+  void* plan_inplace_ = nullptr;  // cached in-place plan, fetched on first in-place call
   PlanRigor rigor_;
 };
+
+// Destroys every cached plan (and FFTW's accumulated wisdom). Only call it when no RealFft or
+// ComplexFft object exists; mainly for leak checkers.
+void ForgetFftPlans();
 
 // Smallest n' >= n whose only prime factors are 2, 3, 5 and 7 (sizes FFTW handles fastest).
 int FftFriendlySize(int n);
