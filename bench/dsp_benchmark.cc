@@ -17,7 +17,7 @@ namespace {
 using namespace spallkit::dsp;
 
 const std::vector<double>& Signal() {
-  static const std::vector<double> x = testing::MakeBearingLikeSignal({});
+  static const std::vector<double> x = test_signals::MakeBearingLikeSignal({});
   return x;
 }
 constexpr double kFs = 48000;

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-namespace spallkit::dsp::testing {
+namespace spallkit::dsp::test_signals {
 
 struct BearingLikeSignal {
   double fs_hz = 48000;
@@ -60,4 +60,4 @@ inline std::vector<double> MakeGaussianNoise(int n, double std_dev, unsigned see
   return x;
 }
 
-}  // namespace spallkit::dsp::testing
+}  // namespace spallkit::dsp::test_signals
