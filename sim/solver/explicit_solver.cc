@@ -19,6 +19,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kNodeChunk = 1024;  // fixed node chunk: sums do not depend on the thread count
 constexpr int kRigidSums = 7;     // m, mx, my, mvx, mvy, m(x vy - y vx), m(x^2 + y^2)
+constexpr int kMinElementsPerThread = 10000;
 constexpr char kMagic[8] = {'S', 'P', 'K', 'C', 'K', 'P', 'T', '1'};
 
 template <typename T>
@@ -197,7 +198,13 @@ void ExplicitSolver::SetRigidVelocity(
 }
 
 void ExplicitSolver::Initialize() {
-  threads_ = options_.num_threads > 0 ? options_.num_threads : omp_get_max_threads();
+  // Default: OpenMP's thread count, but one thread for small models, where the three
+  // fork/join barriers per step cost more than the work (and much more on a busy machine).
+  threads_ = options_.num_threads > 0 ? options_.num_threads
+             : elements_.num_elements() < kMinElementsPerThread
+                 ? 1
+                 : std::min(omp_get_max_threads(),
+                            std::max(1, elements_.num_elements() / kMinElementsPerThread));
   mass_damping_ = 4.0 * kPi * options_.mass_damping_ratio * options_.damping_frequency;
   if (options_.stiffness_damping_ratio > 0.0)
     elements_.set_stiffness_damping(options_.stiffness_damping_ratio /

@@ -91,7 +91,9 @@ struct SolverOptions {
   // output steps once the largest energy exceeds energy_check_floor (J).
   double max_energy_error = 0.0;
   double energy_check_floor = 0.0;
-  int num_threads = 0;  // OpenMP threads (0: OpenMP default)
+  // OpenMP threads. 0: one per 10,000 elements, at most OpenMP's default (small models run
+  // faster on one thread). Results do not depend on it (bit-identical).
+  int num_threads = 0;
 
   bool IsValid(std::string* error) const;
 };
@@ -154,6 +156,8 @@ class ExplicitSolver {
   void Step();
   SolverSummary Run(double end_time);
 
+  // Time t^n of the positions. Element stresses and energies lag one step: they are at
+  // t^(n-1) = time() - time_step() (updated from v^(n-1/2) at the start of the next step).
   double time() const { return time_; }
   long step() const { return step_; }
   double time_step() const { return dt_; }  // last step taken (s)
