@@ -95,6 +95,8 @@ class ContactPair : public solver::ForceContributor {
   // Signed gap of every node of the first surface against the second (m; negative = penetration,
   // +infinity where no master segment is within the search margin), as of the last step.
   const std::vector<double>& SlaveGaps() const { return passes_[0].gap; }
+  // Normal force (N, >= 0) on node i of the first surface from the first pass, as of the last step.
+  double SlaveNormalForce(int i) const { return passes_[0].slots[i].fn; }
   const ContactSurface& slave() const { return passes_[0].slave; }
   const ContactSurface& master() const { return passes_[0].master; }
   const ContactPairOptions& options() const { return options_; }
