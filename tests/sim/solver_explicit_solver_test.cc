@@ -1,0 +1,197 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/error.h"
+#include "sim/fe/mesh_primitives.h"
+#include "sim/solver/explicit_solver.h"
+
+namespace spallkit::solver {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Inner ring (bore tied to a rigid shaft with prescribed rotation, free translation under a
+// radial load) plus a loose disc: exercises elements, damping, constraints and outputs.
+struct Model {
+  fe::Mesh mesh;
+  std::vector<fe::Section> sections;
+  Model() {
+    fe::AnnulusSpec ring;
+    ring.inner_radius = 0.02, ring.outer_radius = 0.026, ring.n_theta = 64, ring.n_radial = 3;
+    fe::DiscSpec disc;
+    disc.cx = 0.05, disc.radius = 0.005, disc.n_core = 3, disc.n_radial = 3;
+    mesh = fe::MergeMeshes({fe::MakeAnnulus("ring", ring), fe::MakeDisc("roller", disc)});
+    fe::ReorderForLocality(&mesh);
+    fe::Section s;
+    s.thickness = 0.01;
+    sections = {s, s};
+  }
+};
+
+std::unique_ptr<ExplicitSolver> Build(const Model& m, int threads, SolverOptions opt = {}) {
+  opt.num_threads = threads;
+  opt.mass_damping_ratio = 0.05;
+  opt.damping_frequency = 5e3;
+  opt.stiffness_damping_ratio = 0.01;
+  opt.stiffness_damping_frequency = 20e3;
+  auto s = std::make_unique<ExplicitSolver>(m.mesh, m.sections, opt);
+  RigidBody shaft;
+  shaft.name = "shaft";
+  shaft.nodes = m.mesh.node_sets.at("ring.inner");
+  shaft.angle = RampedRotation(2000.0, 2e-5);
+  shaft.force_y = [](double) { return -5e4; };
+  shaft.extra_mass = 0.1;
+  s->AddRigidBody(shaft);
+  s->SetRigidVelocity(m.mesh.node_sets.at("roller.all"), 1.0, 0.5, 300.0, 0.05, 0.0);
+  return s;
+}
+
+TEST(ExplicitSolver, BitIdenticalAcrossThreadCounts) {
+  const Model m;
+  auto a = Build(m, 1);
+  auto b = Build(m, 2);
+  for (int k = 0; k < 300; ++k) a->Step(), b->Step();
+  for (size_t i = 0; i < a->state().size(); ++i) {
+    ASSERT_EQ(a->state().x[i], b->state().x[i]) << i;
+    ASSERT_EQ(a->state().vy[i], b->state().vy[i]) << i;
+  }
+  EXPECT_EQ(a->energies().internal, b->energies().internal);
+  EXPECT_EQ(a->energies().damping, b->energies().damping);
+}
+
+TEST(ExplicitSolver, RestartFromCheckpointIsBitIdentical) {
+  const Model m;
+  auto full = Build(m, 1);
+  for (int k = 0; k < 400; ++k) full->Step();
+  auto first = Build(m, 1);
+  for (int k = 0; k < 170; ++k) first->Step();
+  const std::string path = ::testing::TempDir() + "/solver_checkpoint.bin";
+  first->SaveCheckpoint(path);
+  auto resumed = Build(m, 1);
+  resumed->LoadCheckpoint(path);
+  EXPECT_EQ(resumed->step(), 170);
+  for (int k = 170; k < 400; ++k) resumed->Step();
+  EXPECT_EQ(resumed->time(), full->time());
+  for (size_t i = 0; i < full->state().size(); ++i) {
+    ASSERT_EQ(resumed->state().x[i], full->state().x[i]) << i;
+    ASSERT_EQ(resumed->state().vx[i], full->state().vx[i]) << i;
+  }
+  EXPECT_EQ(resumed->energies().external, full->energies().external);
+  EXPECT_EQ(resumed->rigid_body_state(0).y, full->rigid_body_state(0).y);
+  std::remove(path.c_str());
+  // A checkpoint of a different model is rejected.
+  first->SaveCheckpoint(path);
+  fe::RectangleSpec spec;
+  ExplicitSolver other(fe::MakeRectangle("b", spec), {fe::Section{}});
+  EXPECT_THROW(other.LoadCheckpoint(path), InputError);
+  std::remove(path.c_str());
+}
+
+TEST(ExplicitSolver, FreeRigidTranslationFollowsNewton) {
+  // A disc whose every node is tied to a rigid body: a = F / (m + extra_mass) exactly.
+  fe::DiscSpec d;
+  d.radius = 0.01;
+  const fe::Mesh mesh = fe::MakeDisc("d", d);
+  fe::Section sec;
+  sec.thickness = 0.02;
+  ExplicitSolver s(mesh, {sec});
+  RigidBody b;
+  b.name = "d";
+  b.nodes = mesh.node_sets.at("d.all");
+  b.force_x = [](double) { return 100.0; };
+  b.extra_mass = 0.5;
+  s.AddRigidBody(b);
+  s.Run(1e-4);
+  const double mass =
+      7850 * 0.02 * 0.5 * 16 * std::sin(2 * kPi / 16) * 1e-4 + 0.5;  // polygon disc + extra
+  const double t = s.time();
+  // Central differences integrate constant acceleration exactly (with the half-step start).
+  EXPECT_NEAR(
+      s.rigid_body_state(0).x, 0.5 * 100.0 / mass * t * t, 1e-9 * 0.5 * 100.0 / mass * t * t);
+  const auto e = s.energies();
+  EXPECT_NEAR(
+      e.external_loads, e.kinetic, 1e-3 * e.kinetic);  // all load work became kinetic energy
+  EXPECT_LT(e.BalanceError(), 1e-3);
+}
+
+TEST(ExplicitSolver, RelativeDampingSparesSpinPlainDampingBrakesIt) {
+  fe::DiscSpec d;
+  d.radius = 0.005, d.n_core = 4, d.n_radial = 3;
+  const fe::Mesh mesh = fe::MakeDisc("roller", d);
+  auto spin_after = [&](bool relative, double* balance) {
+    SolverOptions opt;
+    opt.mass_damping_ratio = 0.02;
+    opt.damping_frequency = 1e5;  // D_s = 2.5e4 1/s, decay time 40 us
+    opt.damping_relative_to_rigid_motion = relative;
+    ExplicitSolver s(mesh, {fe::Section{}}, opt);
+    s.SetRigidVelocity(mesh.node_sets.at("roller.all"), 0.0, 0.0, 500.0, 0.0, 0.0);
+    s.Run(1e-4);
+    double vx, vy, w;
+    s.PartRigidMotion(0, &vx, &vy, &w);
+    *balance = s.energies().BalanceError();
+    return w;
+  };
+  double b1, b2;
+  const double w_rel = spin_after(true, &b1), w_abs = spin_after(false, &b2);
+  EXPECT_NEAR(w_rel, 500.0, 0.5);
+  // Plain damping: w(t) = w0 exp(-D_s t) = 500 exp(-2.513) = 40.5 rad/s.
+  EXPECT_NEAR(w_abs, 500.0 * std::exp(-4 * kPi * 0.02 * 1e5 * 1e-4), 1.0);
+  EXPECT_LT(b1, 1e-3);
+  EXPECT_LT(b2, 1e-3);
+}
+
+TEST(ExplicitSolver, StiffnessDampingShortensStepAndDissipates) {
+  fe::RectangleSpec spec;
+  spec.width = 0.01, spec.height = 0.01, spec.nx = 4, spec.ny = 4;
+  const fe::Mesh mesh = fe::MakeRectangle("b", spec);
+  SolverOptions plain, damped;
+  damped.stiffness_damping_ratio = 0.05;
+  damped.stiffness_damping_frequency = 1e5;
+  ExplicitSolver a(mesh, {fe::Section{}}, plain), b(mesh, {fe::Section{}}, damped);
+  for (auto* s : {&a, &b})
+    for (size_t i = 0; i < s->state().size(); ++i)
+      s->state().vx[i] = 0.1 * std::sin(300.0 * s->state().y0[i]);
+  a.Run(2e-5);
+  b.Run(2e-5);
+  const double dt_e = a.time_step() / 0.9;
+  const double beta = 0.05 / (kPi * 1e5),
+               xi = beta / dt_e;  // xi = beta w_max / 2, w_max = 2 / dt_e
+  EXPECT_NEAR(b.time_step(),
+              a.time_step() * (std::sqrt(1 + xi * xi) - xi),
+              1e-4 * a.time_step());  // geometries differ slightly
+  EXPECT_GT(b.energies().damping, 0.0);
+  EXPECT_EQ(a.energies().damping, 0.0);
+  // Viscous work is taken with v^(n-1/2) (half a step behind the force): O(dt) balance error.
+  EXPECT_LT(b.energies().BalanceError(), 1e-2);
+}
+
+TEST(ExplicitSolver, OutputCallbackCadenceAndOptionsValidation) {
+  fe::RectangleSpec spec;
+  SolverOptions opt;
+  opt.output_every_steps = 10;
+  ExplicitSolver s(fe::MakeRectangle("b", spec), {fe::Section{}}, opt);
+  std::vector<long> steps;
+  s.SetOutputCallback([&](const ExplicitSolver& sv) { steps.push_back(sv.step()); });
+  for (int k = 0; k < 35; ++k) s.Step();
+  EXPECT_EQ(steps, (std::vector<long>{0, 10, 20, 30}));
+  SolverOptions bad;
+  bad.mass_damping_ratio = 0.02;
+  std::string err;
+  EXPECT_FALSE(bad.IsValid(&err));
+  EXPECT_NE(err.find("damping_frequency"), std::string::npos);
+  EXPECT_THROW(ExplicitSolver(fe::MakeRectangle("b", spec), {fe::Section{}}, bad), InputError);
+}
+
+TEST(ExplicitSolver, RampedRotationHistory) {
+  const auto th = RampedRotation(125.66, 5e-3);
+  const auto w = RampedSpeed(125.66, 5e-3);
+  EXPECT_NEAR(th(2.5e-3), 125.66 * 2.5e-3 * 2.5e-3 / 1e-2, 1e-12);
+  EXPECT_NEAR(th(10e-3), 125.66 * 7.5e-3, 1e-12);
+  EXPECT_NEAR((th(4e-3 + 1e-9) - th(4e-3 - 1e-9)) / 2e-9, w(4e-3), 1e-4);
+}
+
+}  // namespace
+}  // namespace spallkit::solver
