@@ -62,7 +62,7 @@ void BM_Kurtogram(benchmark::State& state) {
     benchmark::DoNotOptimize(k.best.kurtosis);
   }
 }
-BENCHMARK(BM_Kurtogram)->Arg(0)->Arg(6)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kurtogram)->ArgName("max_level")->Arg(0)->Arg(6)->Unit(benchmark::kMillisecond);
 
 // (c) kurtogram + SES of its best band, one forward FFT shared, as in `spall diagnose`.
 void BM_KurtogramThenSes(benchmark::State& state) {

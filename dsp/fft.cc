@@ -2,6 +2,7 @@
 
 #include <fftw3.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <mutex>
@@ -83,6 +84,17 @@ bool SameAlignment(const void* a, const void* b) {
 }
 
 }  // namespace
+
+void FftwDeleter::operator()(void* p) const { fftw_free(p); }
+
+FftwArray<std::complex<double>> AllocateComplex(size_t n) {
+  return FftwArray<std::complex<double>>(
+      reinterpret_cast<std::complex<double>*>(fftw_alloc_complex(std::max<size_t>(n, 1))));
+}
+
+FftwArray<double> AllocateReal(size_t n) {
+  return FftwArray<double>(fftw_alloc_real(std::max<size_t>(n, 1)));
+}
 
 void ForgetFftPlans() {
   std::lock_guard<std::mutex> lock(PlannerMutex());

@@ -17,11 +17,23 @@
 #pragma once
 
 #include <complex>
+#include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace spallkit::dsp {
 
 enum class PlanRigor { kEstimate, kMeasure };
+
+// Arrays from fftw_malloc, with the SIMD alignment FFTW's plans are made for: passing them to
+// RealFft / ComplexFft avoids the copy through scratch that unaligned arrays need.
+struct FftwDeleter {
+  void operator()(void* p) const;
+};
+template <class T>
+using FftwArray = std::unique_ptr<T[], FftwDeleter>;
+FftwArray<std::complex<double>> AllocateComplex(size_t n);
+FftwArray<double> AllocateReal(size_t n);
 
 // Real <-> half-complex transforms of size n: Forward maps n reals to n/2+1 complex bins
 // X_k = sum_t x_t exp(-2 pi i k t / n); Inverse maps n/2+1 bins back to n reals (times n).

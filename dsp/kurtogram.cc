@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <sstream>
 
 #include "core/error.h"
@@ -32,6 +33,33 @@ int FirstBin(int64_t i, int64_t nodes, int64_t n) {
   return static_cast<int>((i * n + 2 * nodes - 1) / (2 * nodes));
 }
 
+// sum p and sum p^2 with four-wide vector accumulators (GCC/Clang vector extension): a plain
+// loop would be a serial chain of dependent additions, as the compiler may not reassociate.
+void SumAndSumOfSquares(const double* p, int m, double* sum, double* sum_sq) {
+  typedef double V4 __attribute__((vector_size(32)));
+  V4 s = {0, 0, 0, 0}, q = {0, 0, 0, 0}, s1 = s, q1 = q;
+  int j = 0;
+  for (; j + 8 <= m; j += 8) {
+    V4 a, b;
+    std::memcpy(&a, p + j, sizeof(a));
+    std::memcpy(&b, p + j + 4, sizeof(b));
+    s += a;
+    q += a * a;
+    s1 += b;
+    q1 += b * b;
+  }
+  s += s1;
+  q += q1;
+  double total = (s[0] + s[1]) + (s[2] + s[3]);
+  double total_sq = (q[0] + q[1]) + (q[2] + q[3]);
+  for (; j < m; ++j) {
+    total += p[j];
+    total_sq += p[j] * p[j];
+  }
+  *sum = total;
+  *sum_sq = total_sq;
+}
+
 int MaxLevelFor(int n) {
   return static_cast<int>(std::floor(std::log2(static_cast<double>(n)))) - 4;
 }
@@ -42,7 +70,7 @@ double Kurtogram::BandwidthHz(int row) const {
   const double level = levels.at(row);
   const int whole = static_cast<int>(std::floor(level + 1e-9));
   const bool ternary = level - whole > 1e-6;
-  const double nodes = ternary ? 3.0 * std::ldexp(1.0, whole) : std::ldexp(1.0, whole);
+  const double nodes = ternary ? 3.0 * std::ldexp(1.0, whole - 1) : std::ldexp(1.0, whole);
   return 0.5 * sample_rate_hz / nodes;
 }
 
@@ -100,52 +128,55 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
       const int hi = (i + 1 == rows[r].nodes) ? bins : FirstBin(i + 1, rows[r].nodes, n);
       widest = std::max(widest, hi - lo);
     }
-    // M >= 2B - 1: |c|^4 spans +-2(B-1) bins, so the decimated moments are exact; M >= B:
-    // critically sampled c, half the cost, moments estimated from every other such sample.
-    row_m[r] = FftFriendlySize(options.exact_moments ? std::max(2 * widest - 1, 1) : widest);
-    buffer_size = std::max(buffer_size, static_cast<size_t>(row_m[r]) * rows[r].nodes);
+    // M >= 2B - 1: |c|^4 spans +-2(B-1) bins, so the decimated moments are exact. (Critical
+    // sampling, M >= B, would halve the cost but misses envelope peaks: on impulsive test signals
+    // its kurtosis was off by 27 % in nodes of 1000 bins and by 130 % in narrow ones.)
+    row_m[r] = FftFriendlySize(std::max(2 * widest - 1, 1));
+    buffer_size = std::max(buffer_size, static_cast<size_t>(row_m[r]));
   }
-  std::vector<std::complex<double>> buffer(buffer_size);
+  // Aligned node buffers reused by every node (fill -> transform -> moments while the node's
+  // data are in cache), out of place: FFTW's in-place plans add copy passes.
+  const auto filled = AllocateComplex(buffer_size);
+  const auto envelope = AllocateComplex(buffer_size);
+  std::vector<double> power(buffer_size);
+  // Cumulative one-sided energy with analytic weights, for each node's energy by Parseval. A node
+  // holding less than kEmptyNode of the record's energy carries only rounding residue, whose
+  // kurtosis is meaningless, so it is reported as 0.
+  std::vector<double> cumulative(bins + 1, 0.0);
+  for (int k = 0; k < bins; ++k) {
+    const bool edge = (k == 0) || (2 * k == n);
+    cumulative[k + 1] = cumulative[k] + (edge ? 0.25 : 1.0) * std::norm(x[k]);
+  }
+  const double total_energy = cumulative[bins];
+  constexpr double kEmptyNode = 1e-20;
 
   for (size_t r = 0; r < rows.size(); ++r) {
     const int nodes = rows[r].nodes;
     const int m = row_m[r];
-    // Ideal one-sided band-pass of each node, shifted to DC (weights as for an analytic signal;
-    // the overall scale cancels in the kurtosis).
-    for (int i = 0; i < nodes; ++i) {
-      const int lo = FirstBin(i, nodes, n);
-      const int hi = (i + 1 == nodes) ? bins : FirstBin(i + 1, nodes, n);
-      std::complex<double>* dst = buffer.data() + static_cast<size_t>(i) * m;
-      for (int k = lo; k < hi; ++k) {
-        const bool edge = (k == 0) || (2 * k == n);
-        dst[k - lo] = edge ? 0.5 * x[k] : x[k];
-      }
-      std::fill(dst + (hi - lo), dst + m, std::complex<double>(0.0));
-    }
-    ComplexFft fft(m, +1, nodes);
-    fft.Execute(buffer.data(), buffer.data());
-
+    ComplexFft fft(m, +1);
     std::vector<double> row(nodes);
     for (int i = 0; i < nodes; ++i) {
-      const double* c = reinterpret_cast<const double*>(buffer.data() + static_cast<size_t>(i) * m);
-      // Four partial sums let the compiler vectorise the reduction.
-      double s2[4] = {0, 0, 0, 0}, s4[4] = {0, 0, 0, 0};
-      int j = 0;
-      for (; j + 4 <= m; j += 4) {
-        for (int u = 0; u < 4; ++u) {
-          const double p =
-              c[2 * (j + u)] * c[2 * (j + u)] + c[2 * (j + u) + 1] * c[2 * (j + u) + 1];
-          s2[u] += p;
-          s4[u] += p * p;
-        }
+      // Ideal one-sided band-pass of the node, shifted to DC (weights as for an analytic
+      // signal, 1 inside and 1/2 at DC and Nyquist; the overall scale cancels in the kurtosis).
+      const int lo = FirstBin(i, nodes, n);
+      const int hi = (i + 1 == nodes) ? bins : FirstBin(i + 1, nodes, n);
+      std::complex<double>* in = filled.get();
+      std::copy(x.begin() + lo, x.begin() + hi, in);
+      if (lo == 0) in[0] *= 0.5;
+      if (2 * (hi - 1) == n) in[hi - 1 - lo] *= 0.5;
+      std::fill(in + (hi - lo), in + m, std::complex<double>(0.0));
+      const double energy = cumulative[hi] - cumulative[lo];
+      if (!(energy > kEmptyNode * total_energy)) {
+        row[i] = 0.0;
+        continue;
       }
-      for (; j < m; ++j) {
-        const double p = c[2 * j] * c[2 * j] + c[2 * j + 1] * c[2 * j + 1];
-        s2[0] += p;
-        s4[0] += p * p;
-      }
-      const double sum2 = (s2[0] + s2[1]) + (s2[2] + s2[3]);
-      const double sum4 = (s4[0] + s4[1]) + (s4[2] + s4[3]);
+      fft.Execute(in, envelope.get());
+      // |c|^2 first (an elementwise loop that vectorises), then two plain reductions.
+      const double* c = reinterpret_cast<const double*>(envelope.get());
+      double* p = power.data();
+      for (int j = 0; j < m; ++j) p[j] = c[2 * j] * c[2 * j] + c[2 * j + 1] * c[2 * j + 1];
+      double sum2 = 0, sum4 = 0;
+      SumAndSumOfSquares(p, m, &sum2, &sum4);
       const double k = sum2 > 0 ? m * sum4 / (sum2 * sum2) - 2.0 : 0.0;
       row[i] = std::max(0.0, k);
     }
@@ -154,14 +185,14 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   }
 
   // Best node: highest kurtosis among nodes centred at or above min_center_hz; on a tie the
-  // coarser level (wider band, listed first) wins.
+  // coarser level (wider band, listed first) wins; values within 1e-9 (rounding) count as ties.
   bool found = false;
   for (size_t r = 0; r < out.levels.size(); ++r) {
     const double bw = out.BandwidthHz(static_cast<int>(r));
     for (size_t i = 0; i < out.kurtosis[r].size(); ++i) {
       const double center = (i + 0.5) * bw;
       if (center < options.min_center_hz) continue;
-      if (!found || out.kurtosis[r][i] > out.best.kurtosis) {
+      if (!found || out.kurtosis[r][i] > out.best.kurtosis * (1 + 1e-9)) {
         found = true;
         out.best.level = out.levels[r];
         out.best.index = static_cast<int>(i);

@@ -8,19 +8,23 @@
 // Implementation: the frequency-domain equivalent of the filter bank, not the 16-tap filters.
 // Each node's complex envelope c is obtained by an ideal band-pass on the one-sided spectrum of
 // the whole record (one forward FFT), shifted to DC and inverse-transformed at a decimated size
-// M (FFTW-friendly) >= B, the number of bins in the node, one batched FFTW call per level. Why:
-// (1) the passbands are exact and adjacent, with none of the ripple and overlap of the short
-// quasi-analytic filters (which shift the best node when a resonance sits on an edge); (2) the
-// decimation is exact: with M >= 2B - 1 (options.exact_moments) the sampled |c|^2 is alias-free
-// and the moments <|c|^2>, <|c|^4> equal those of the full-rate envelope to rounding; with the
-// default M >= B (critical sampling, like a maximally decimated filter bank, half the cost) <|c|^2>
-// is still exact and <|c|^4> is estimated from every other exact sample; (3) it reuses the record's
-// FFT that the SES needs anyway, and each row costs about one half-record complex FFT in small
-// cache-resident pieces, which keeps kurtogram + SES of 10 s at 48 kHz within ~20 ms on one core.
+// M >= 2B - 1 (FFTW-friendly), B being the number of bins in the node. Why: (1) the passbands are
+// exact and adjacent, with none of the ripple and overlap of the short quasi-analytic filters
+// (which shift the best node when a resonance sits on an edge); (2) the decimation is exact:
+// |c|^2 spans +-(B-1) bins and |c|^4 +-2(B-1), so with M >= 2B - 1 the moments <|c|^2>, <|c|^4>
+// over the decimated samples equal those of the continuous envelope to rounding. Antoni's filter
+// bank keeps the same factor-2 oversampling (rate fs/2^k for bands fs/2^(k+1) wide); (3) it
+// reuses the record's FFT that the SES needs anyway, and each row costs about one record-length
+// complex FFT in small cache-resident pieces, which keeps kurtogram + SES of 10 s at 48 kHz at a
+// few tens of milliseconds on one core.
+// The record is treated as periodic (as any FFT method does, and as the filter bank's start-up
+// transient does): a jump between its last and first samples acts as one impulse. It matters only
+// in nodes with almost no energy of their own, e.g. far from the lines of a pure synthetic tone.
 //
 // Per node: K = <|c|^4> / <|c|^2>^2 - 2 (0 for Gaussian noise, -1 for a pure tone), clipped at 0.
 // The mean of the record is removed (bin 0 zeroed), so the DC node sees no offset; a node is
 // half-open [low, high) in bins except the last one of a level, which also takes the Nyquist bin.
+// A node holding less than 1e-20 of the record's energy (only rounding residue) reports 0.
 // Nodes whose centre is below options.min_center_hz are computed and shown but never chosen as
 // `best` (use it to keep shaft-rate knocks and the DC region out of the choice).
 #pragma once
@@ -39,11 +43,6 @@ struct KurtogramOptions {
   // Allowed: 1 <= L <= floor(log2 N) - 4 (nodes of at least 8 FFT bins); else InputError.
   int max_level = 0;
   double min_center_hz = 0;  // nodes centred below this are never `best`
-  // false (default): each node's envelope is critically sampled (M >= B bins), which halves the
-  // cost; the moments are then averages over half of the exact decimated samples, an estimate
-  // that differs from the exact one by a fraction of its statistical spread (tests bound it).
-  // true: M >= 2B - 1, the moments equal those of the full-rate envelope to rounding.
-  bool exact_moments = false;
 };
 
 struct KurtogramNode {
