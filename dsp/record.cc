@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -135,6 +136,8 @@ void SplitLine(std::string_view line, Separator sep, std::vector<std::string_vie
     return;
   }
   const char c = sep == Separator::kComma ? ',' : sep == Separator::kSemicolon ? ';' : '\t';
+  // A separator that ends the line (some DAQ exporters write one) does not open another cell.
+  if (!line.empty() && line.back() == c) line.remove_suffix(1);
   size_t start = 0;
   while (true) {
     const size_t pos = line.find(c, start);
@@ -290,6 +293,10 @@ void ValidateOptionRate(const RecordOptions& options, const std::string& name) {
 }
 
 std::string ReadWholeFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(path + ": is a directory, expected a record file");
+  }
   std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
   if (!file) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
   std::string text;

@@ -17,7 +17,8 @@
 //    sample rate.
 //  * Separator: detected on the first non-comment line: tab if it has a tab, else ';' if it has a
 //    semicolon, else ',' if it has a comma, else runs of blanks. Cells are trimmed; surrounding
-//    double quotes are removed. Decimal commas are not supported.
+//    double quotes are removed; a separator at the end of a line is ignored. Decimal commas
+//    are not supported.
 //  * Header: the first non-comment line is a header when any of its cells is not a number.
 //    Every data cell must be a finite number (no NaN/Inf, no empty cell), and every row must have
 //    as many cells as the header (or as the first data row).

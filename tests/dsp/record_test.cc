@@ -199,6 +199,17 @@ TEST_F(RecordTest, MissingFile) {
   EXPECT_CONTAINS(ErrorOf(Path("nope.h5")), "nope.h5: cannot open");
 }
 
+TEST_F(RecordTest, DirectoryInsteadOfFile) {
+  EXPECT_EQ(ErrorOf(dir_.string()), dir_.string() + ": is a directory, expected a record file");
+}
+
+TEST_F(RecordTest, TrailingSeparatorIsNotAnExtraField) {
+  const Record r = ReadRecord(Write("trail.csv", "time_s,a,\n0,1,\n0.5,2,\n1,3,\n"));
+  EXPECT_EQ(r.samples, (std::vector<double>{1, 2, 3}));
+  const std::string path = Write("trail_missing.csv", "time_s,a,b,\n0,1,2,\n0.5,2,\n");
+  EXPECT_EQ(ErrorOf(path), path + ":3: 2 fields, expected 3 (as in the header)");
+}
+
 TEST_F(RecordTest, EmptyFileAndCommentsOnly) {
   std::string path = Write("empty.csv", "");
   EXPECT_EQ(ErrorOf(path), path + ": empty file, expected a header and/or rows of numbers");
