@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -292,6 +293,66 @@ double ContactPair::StableTimeStep(const fe::NodalState& state) const {
   if (passes_.size() > 1) omega2 *= 2.0;
   if (!(omega2 > 0.0)) return kInf;
   return options_.stable_step_safety * 2.0 / std::sqrt(omega2) * damping_factor;
+}
+
+namespace {
+template <typename T>
+void Put(std::string* out, const T& v) {
+  out->append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+template <typename T>
+T Get(const std::string& in, size_t* pos, const std::string& name) {
+  if (*pos + sizeof(T) > in.size())
+    throw InputError("contact pair '" + name + "': truncated checkpoint state");
+  T v;
+  std::memcpy(&v, in.data() + *pos, sizeof(T));
+  *pos += sizeof(T);
+  return v;
+}
+}  // namespace
+
+std::string ContactPair::SaveState() const {
+  std::string out;
+  Put(&out, static_cast<int>(passes_.size()));
+  Put(&out, initialised_);
+  for (double v : {reference_dt_, stored_energy_, friction_dissipation_, damping_dissipation_})
+    Put(&out, v);
+  Put(&out, num_rebuilds_);
+  for (const Pass& p : passes_) {
+    Put(&out, p.slave.num_nodes());
+    Put(&out, p.margin);
+    Put(&out, p.capture);
+    for (int i = 0; i < p.slave.num_nodes(); ++i) {
+      Put(&out, p.tangential_force[i]);
+      Put(&out, p.tangential_stiffness[i]);
+      Put(&out, p.gap[i]);
+    }
+  }
+  return out;
+}
+
+void ContactPair::LoadState(const std::string& bytes) {
+  size_t pos = 0;
+  if (Get<int>(bytes, &pos, name_) != static_cast<int>(passes_.size()))
+    throw InputError("contact pair '" + name_ + "': checkpoint has a different number of passes");
+  initialised_ = Get<bool>(bytes, &pos, name_);
+  reference_dt_ = Get<double>(bytes, &pos, name_);
+  stored_energy_ = Get<double>(bytes, &pos, name_);
+  friction_dissipation_ = Get<double>(bytes, &pos, name_);
+  damping_dissipation_ = Get<double>(bytes, &pos, name_);
+  num_rebuilds_ = Get<int>(bytes, &pos, name_);
+  for (Pass& p : passes_) {
+    if (Get<int>(bytes, &pos, name_) != p.slave.num_nodes())
+      throw InputError("contact pair '" + name_ + "': checkpoint surface size differs");
+    p.margin = Get<double>(bytes, &pos, name_);
+    p.capture = Get<double>(bytes, &pos, name_);
+    for (int i = 0; i < p.slave.num_nodes(); ++i) {
+      p.tangential_force[i] = Get<double>(bytes, &pos, name_);
+      p.tangential_stiffness[i] = Get<double>(bytes, &pos, name_);
+      p.gap[i] = Get<double>(bytes, &pos, name_);
+    }
+    p.grid = SegmentGrid{};  // rebuilt at the next step
+  }
 }
 
 ContactPair MakeContactPair(const fe::Mesh& mesh,

@@ -88,6 +88,11 @@ class ContactPair : public solver::ForceContributor {
   double StoredEnergy() const override { return stored_energy_; }
   double DissipatedEnergy() const override { return friction_dissipation_ + damping_dissipation_; }
   std::string Name() const override { return name_; }
+  // Checkpoint/restart (ForceContributor hook): friction springs, energies, search settings. The
+  // grid is rebuilt after a load; candidates are complete either way, so results are identical.
+  // (No `override` so this header also builds against a ForceContributor without the hook.)
+  std::string SaveState() const;
+  void LoadState(const std::string& bytes);
 
   double FrictionDissipation() const { return friction_dissipation_; }
   double DampingDissipation() const { return damping_dissipation_; }

@@ -298,6 +298,41 @@ TEST(ContactPair, SlidingNodeCarriesDynamicFriction) {
               1e-3 * 0.2 * normal * slid);
 }
 
+TEST(ContactPair, SaveAndLoadStateResumesIdentically) {
+  ContactPairOptions options;
+  options.penalty_law = PenaltyLaw::kConstant;
+  options.constant_stiffness = 1e6;
+  options.search_margin = 1.0;
+  options.friction = {.static_coefficient = 0.4, .dynamic_coefficient = 0.2, .decay = 100.0};
+  auto make = [&] {
+    return ContactPair("ck",
+                       MakeSurfaceFromChain("s", {2}, false),
+                       MakeSurfaceFromChain("m", {0, 1}, false),
+                       options);
+  };
+  auto step = [](ContactPair& pair, fe::NodalState& st, int n) {
+    for (int i = 0; i < n; ++i) {
+      st.fx.assign(3, 0.0);
+      st.fy.assign(3, 0.0);
+      pair.AddForces(st, 0.0, 1e-6);
+      st.x[2] += 1e-6 * st.vx[2];
+    }
+  };
+  ContactPair a = make();
+  fe::NodalState sa = MakeState({1.0, 0.0, 0.2}, {0.0, 0.0, -1e-4}, 0.0);
+  sa.vx[2] = 0.01;
+  step(a, sa, 5);
+  ContactPair b = make();
+  fe::NodalState sb = sa;
+  b.LoadState(a.SaveState());
+  step(a, sa, 5);
+  step(b, sb, 5);
+  EXPECT_EQ(sa.fx[2], sb.fx[2]);
+  EXPECT_EQ(a.FrictionDissipation(), b.FrictionDissipation());
+  EXPECT_EQ(a.StoredEnergy(), b.StoredEnergy());
+  EXPECT_THROW(b.LoadState("x"), InputError);
+}
+
 TEST(ContactPair, ParallelResultsAreBitIdentical) {
   // A wavy slave ring inside an overlapping master ring: many nodes in contact.
   const int n = 3000;
