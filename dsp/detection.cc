@@ -21,6 +21,9 @@ bool DetectionOptions::IsValid(std::string* error) const {
   if (!(line_p_value > 0.0 && line_p_value < 1.0)) return fail("line p-value must be in (0, 1)");
   if (!(max_line_score > 0.0)) return fail("max line score must be > 0");
   if (!(guard_bins >= 0.0 && guard_fraction >= 0.0)) return fail("guards must be >= 0");
+  if (shaft_order_divisor < 1) return fail("shaft order divisor must be >= 1");
+  if (min_sidebands < 0) return fail("min sidebands must be >= 0");
+  if (!(min_modulation >= 0.0)) return fail("min modulation must be >= 0");
   return true;
 }
 
@@ -118,7 +121,8 @@ double GammaThreshold(int m, double alpha_over_mult) {
 }
 
 bool FamilyDetection::family_evidence() const {
-  if (significant_harmonics >= 2) return true;
+  if (significant_harmonics >= 2 && (!sidebands_expected || significant_sidebands >= min_sidebands))
+    return true;
   // One harmonic with both of its sidebands.
   for (const auto& h : lines) {
     if (h.line.is_sideband() || !h.significant) continue;
@@ -160,18 +164,26 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
 
   // Exclusions do not depend on s beyond a bin or two: decide them at each s for the shaft (the
   // shaft lines move with the speed), once for mains (fixed in Hz).
+  const double shaft_base = context.shaft_hz / std::max(1, options.shaft_order_divisor);
   auto excluded_at = [&](double f, double s, std::string* why) {
     const double guard = std::max(options.guard_bins * df, options.guard_fraction * f);
     if (context.exclude_shaft &&
-        (DistanceToHarmonic(f, context.shaft_hz * s) <= guard ||
+        (DistanceToHarmonic(f, shaft_base * s) <= guard ||
+         (context.measured_shaft_scale <= 0.0 && DistanceToHarmonic(f, shaft_base) <= guard) ||
          (context.measured_shaft_scale > 0.0 &&
-          DistanceToHarmonic(f, context.shaft_hz * context.measured_shaft_scale) <= guard))) {
+          DistanceToHarmonic(f, shaft_base * context.measured_shaft_scale) <= guard))) {
       if (why) *why = "shaft";
       return true;
     }
     for (double mains : options.mains_hz) {
       if (context.exclude_mains && DistanceToHarmonic(f, mains) <= guard) {
         if (why) *why = "mains";
+        return true;
+      }
+    }
+    for (double base : context.exclude_harmonics_of_hz) {
+      if (DistanceToHarmonic(f, base) <= guard) {
+        if (why) *why = "cage";
         return true;
       }
     }
@@ -240,6 +252,8 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
 
   // Line table at the best scale.
   double num = 0.0, den = 0.0;
+  double harmonic_sum = 0.0;
+  int harmonic_count = 0;
   for (int l = 0; l < nl; ++l) {
     LineEvidence ev;
     ev.line = family.lines[l];
@@ -260,8 +274,15 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
     ev.power = spectrum.power[i];
     ev.z = spectrum.z[i];
     ev.p_value = spectrum.PairPValue(ev.z);
-    ev.significant = ev.p_value <= options.line_p_value;
+    ev.modulation =
+        spectrum.envelope_mean > 0.0 ? std::sqrt(ev.power) / spectrum.envelope_mean : 0.0;
+    ev.significant = ev.p_value <= options.line_p_value &&
+                     (spectrum.envelope_mean <= 0.0 || ev.modulation >= options.min_modulation);
     ev.freq_hz = InterpolatePeakHz(spectrum.power, i, df);
+    if (!ev.line.is_sideband()) {
+      harmonic_sum += -std::log(std::max(ev.p_value, 1e-300));
+      ++harmonic_count;
+    }
     if (ev.significant) {
       if (ev.line.is_sideband()) {
         ++det.significant_sidebands;
@@ -275,6 +296,9 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
     det.lines.push_back(ev);
   }
   det.fundamental_hz = den > 0.0 ? num / den : family.fundamental_hz * best_s;
+  det.min_sidebands = options.min_sidebands;
+  for (const auto& l : family.lines) det.sidebands_expected |= l.is_sideband();
+  det.harmonic_evidence = harmonic_count > 0 ? harmonic_sum / harmonic_count : 0.0;
 
   const bool significant = det.p_value <= options.false_alarm_probability;
   const bool family_ok = det.family_evidence();

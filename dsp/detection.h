@@ -45,6 +45,20 @@ struct DetectionOptions {
   std::vector<double> mains_hz = {50.0, 60.0};
   double guard_bins = 2.0;        // exclusion half-width around shaft/mains harmonics, in bins...
   double guard_fraction = 0.002;  // ...or this fraction of the line frequency, whichever is larger
+  // Shaft lines are excluded at multiples of f_r / shaft_order_divisor: 2 also treats the
+  // half orders (m + 1/2) f_r of looseness and rub as non-evidence (CWRU's healthy record 97
+  // has strong 16.5 and 27.5 order lines in its SES).
+  int shaft_order_divisor = 2;
+  // Families whose physics predicts sidebands (inner race: +/- f_r from the load zone; rolling
+  // element: +/- f_c) must show at least this many significant sidebands besides >= 2
+  // harmonics: a bare harmonic comb at 5.4 orders is what CWRU's healthy record 97 has.
+  int min_sidebands = 2;
+  // Effect size: a significant line must also modulate at least this fraction of the band's
+  // mean squared envelope (level / mean(SE); an AM depth m gives m, a sharp impulse train ~1 per
+  // harmonic). Significance alone grows with record length, and every bearing has weak
+  // BPFO-order lines (varying compliance); those modulate a few % at most. Needs
+  // NormalizedSpectrum::envelope_mean > 0, else only p-values count.
+  double min_modulation = 0.12;
 
   bool IsValid(std::string* error) const;
 };
@@ -56,6 +70,7 @@ struct NormalizedSpectrum {
   std::vector<double> z;      // power / floor
   double resolution_hz = 0.0;
   double effective_samples = 0.0;  // n of the Lomax tail
+  double envelope_mean = 0.0;      // mean of the squared envelope (level units), 0 = unknown
 
   // Null probability that one bin exceeds z.
   double BinTail(double z_value) const;
@@ -71,10 +86,11 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
 
 struct LineEvidence {
   FaultLine line;
-  double freq_hz = 0.0;  // sub-bin peak position near s f_l
-  double power = 0.0;    // SES power at the line (the larger of the two bins)
-  double z = 0.0;        // power / floor
-  double p_value = 1.0;  // per-line null p-value
+  double freq_hz = 0.0;     // sub-bin peak position near s f_l
+  double power = 0.0;       // SES power at the line (the larger of the two bins)
+  double z = 0.0;           // power / floor
+  double p_value = 1.0;     // per-line null p-value
+  double modulation = 0.0;  // level / mean squared envelope (0 when unknown)
   bool significant = false;
   bool excluded = false;  // coincides with a shaft or mains harmonic, or beyond the spectrum
   std::string exclusion;  // "shaft", "mains", "range", "" otherwise
@@ -88,6 +104,10 @@ struct DetectionContext {
   double multiplicity = 1.0;        // families x candidate bands (Bonferroni)
   bool exclude_shaft = true;        // false to search for the shaft harmonics themselves
   bool exclude_mains = true;
+  // Further fundamentals (Hz) whose harmonics are non-evidence, e.g. a detected cage rate: a
+  // cage fault's dense f_c comb would otherwise also feed the f_b (~ 12 f_c for a 6205) and
+  // BPFO (= Z f_c) combs. Reported as exclusion "cage".
+  std::vector<double> exclude_harmonics_of_hz;
 };
 
 struct FamilyDetection {
@@ -103,9 +123,16 @@ struct FamilyDetection {
   int combinations = 0;         // C
   int significant_harmonics = 0;
   int significant_sidebands = 0;
+  // Carrier strength: mean over the non-excluded harmonic lines (not sidebands) of the uncapped
+  // -ln p. Ranks detected families: the lattice of shaft/cage combination lines lets a strong
+  // fault feed other combs through sidebands and coincident harmonics (for a 6205, 3 BPFO ~
+  // 2 BPFI), but the true family's own harmonics are the strongest lines.
+  double harmonic_evidence = 0.0;
   std::vector<LineEvidence> lines;
   std::string reason;  // why detected / not detected, one line
 
+  bool sidebands_expected = false;
+  int min_sidebands = 2;
   bool family_evidence() const;  // the harmonic/sideband rule above
 };
 

@@ -1,0 +1,554 @@
+#include "dsp/diagnose.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "dsp/prewhiten.h"
+
+namespace spallkit::dsp {
+
+bool DiagnoseOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (harmonics < 1 || harmonics > 20) return fail("harmonics must be in 1..20");
+  if (!(tolerance > 0.0 && tolerance <= 0.1)) return fail("tolerance must be in (0, 10] %");
+  if (!(speed_search >= 0.0 && speed_search <= 0.2))
+    return fail("speed search must be in [0, 20] %");
+  if (!(false_alarm_probability > 0.0 && false_alarm_probability < 1.0))
+    return fail("false-alarm probability must be in (0, 1)");
+  if (kurtogram_max_level < 0) return fail("kurtogram level must be >= 0");
+  if (floor_window_bins < 21) return fail("floor window must be >= 21 bins");
+  if (!(line_p_value > 0.0 && line_p_value < 1.0)) return fail("line p-value must be in (0, 1)");
+  if (!(min_modulation >= 0.0 && min_modulation < 10.0))
+    return fail("min modulation must be in [0, 10)");
+  return true;
+}
+
+std::optional<double> EstimateShaftSpeed(const EnvelopeAnalyzer& analyzer,
+                                         double nominal_hz,
+                                         double search) {
+  constexpr int kShaftHarmonics = 5;
+  const double df = analyzer.resolution_hz();
+  const auto& spec = analyzer.spectrum();
+  DetectionOptions dopt;
+  dopt.tolerance = search;
+  dopt.floor_window_bins = 101;
+  const int need = static_cast<int>(std::ceil(kShaftHarmonics * nominal_hz * (1.0 + search) / df)) +
+                   dopt.floor_window_bins / 2 + 4;
+  if (need >= static_cast<int>(spec.size()) || nominal_hz * (1.0 - search) < 8 * df)
+    return std::nullopt;
+  const int bins = std::max(need, dopt.floor_window_bins + 2);
+  if (bins >= static_cast<int>(spec.size())) return std::nullopt;
+  std::vector<double> power(bins);
+  for (int i = 0; i < bins; ++i) power[i] = std::norm(spec[i]);
+  const NormalizedSpectrum norm = NormalizeSpectrum(power, df, dopt);
+  FaultFamily shaft;
+  shaft.fundamental_hz = nominal_hz;
+  for (int k = 1; k <= kShaftHarmonics; ++k) {
+    FaultLine l;
+    l.harmonic = k;
+    l.nominal_hz = k * nominal_hz;
+    l.label = std::to_string(k) + "xf_r";
+    shaft.lines.push_back(l);
+  }
+  DetectionContext ctx;
+  ctx.shaft_hz = nominal_hz;
+  ctx.exclude_shaft = false;
+  ctx.exclude_mains = false;
+  const FamilyDetection det = DetectFamily(norm, shaft, ctx, dopt);
+  if (!det.detected) return std::nullopt;
+  return det.fundamental_hz;
+}
+
+namespace {
+
+constexpr int kFamilies = 4;
+
+// Highest cyclic frequency any family can put a line at, with the search range.
+double NeededAlpha(const std::vector<FaultFamily>& families, double max_scale) {
+  double top = 0.0;
+  for (const auto& f : families) top = std::max(top, f.MaxLineHz());
+  return top * max_scale;
+}
+
+struct BandResult {
+  KurtogramNode node;
+  EnvelopeSpectrum ses;
+  NormalizedSpectrum normalized;
+  std::vector<FamilyDetection> detections;
+  double best_p = 1.0;
+};
+
+// Mean of the squared envelope |c|^2 of a band, in the SES level's units: with the
+// EnvelopeAnalyzer scaling (a sine of amplitude A gives SE = A^2) it is twice the band's
+// variance, 4/N^2 sum |X_k|^2 over the band's one-sided bins (Parseval).
+double SquaredEnvelopeMean(const EnvelopeAnalyzer& analyzer, const Band& band) {
+  const auto& spec = analyzer.spectrum();
+  const double df = analyzer.resolution_hz();
+  const int n = analyzer.size();
+  const int k1 = std::max(1, static_cast<int>(std::ceil(band.low_hz / df)));
+  const int k2 =
+      std::min(static_cast<int>(spec.size()) - 1, static_cast<int>(std::floor(band.high_hz / df)));
+  double sum = 0.0;
+  for (int k = k1; k <= k2; ++k) sum += std::norm(spec[k]);
+  return 4.0 * sum / (double(n) * double(n));
+}
+
+// Band preference: a band where some family is detected beats one where none is; then the
+// largest margin of a family's score over its threshold (orders like -log p, and does not
+// saturate where p underflows to 0).
+std::pair<bool, double> BandKey(const BandResult& b) {
+  bool any = false;
+  double margin = -std::numeric_limits<double>::infinity();
+  for (const auto& det : b.detections) {
+    const double m = det.score - det.threshold;
+    if (det.detected && !any) {
+      any = true;
+      margin = m;
+    } else if (det.detected == any) {
+      margin = std::max(margin, m);
+    }
+  }
+  return {any, margin};
+}
+
+std::string Fmt(const char* fmt, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+}  // namespace
+
+Diagnosis Diagnose(const Record& record,
+                   const BearingGeometry& bearing,
+                   double shaft_hz,
+                   const DiagnoseOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError("diagnose: " + error);
+  if (!(shaft_hz > 0.0) || !std::isfinite(shaft_hz))
+    throw InputError("diagnose: shaft speed must be > 0 (got " + Fmt("%g", shaft_hz * 60.0) +
+                     " rpm)");
+  const double fs = record.sample_rate_hz;
+  if (!(fs > 0.0) || !std::isfinite(fs))
+    throw InputError("diagnose: sample rate must be > 0 Hz (got " + Fmt("%g", fs) + ")");
+
+  Diagnosis d;
+  d.options = options;
+  d.bearing = bearing.name;
+  d.kinematics = ComputeFrequencies(bearing, shaft_hz);
+  d.sample_rate_hz = fs;
+  d.samples = static_cast<int>(record.samples.size());
+  d.source = record.source;
+  d.channel = record.channel;
+  d.units = record.units;
+
+  const auto& kin = d.kinematics;
+  const double top_fundamental = std::max({kin.bpfi_hz, kin.bpfo_hz, kin.f_b_hz});
+  if (top_fundamental >= 0.5 * fs)
+    throw InputError("diagnose: fault frequencies above Nyquist: BPFI " + Fmt("%.1f", kin.bpfi_hz) +
+                     " Hz >= fs/2 = " + Fmt("%.1f", 0.5 * fs) + " Hz (check --rpm and --fs)");
+
+  FaultBandOptions fbo;
+  fbo.harmonics = options.harmonics;
+  fbo.tolerance = options.tolerance;
+  d.families = MakeFaultFamilies(kin, fbo);
+
+  const double max_scale = (1.0 + options.speed_search) * (1.0 + options.tolerance);
+  const double alpha_need = NeededAlpha(d.families, max_scale);
+  if (alpha_need > 0.25 * fs)
+    throw InputError("diagnose: fault lines up to " + Fmt("%.0f", alpha_need) + " Hz (harmonics " +
+                     std::to_string(options.harmonics) +
+                     ") need a demodulation band that wide above them: fs must be >= " +
+                     Fmt("%.0f", 4.0 * alpha_need) + " Hz (got " + Fmt("%g", fs) +
+                     "; lower --harmonics or check --rpm)");
+
+  const double duration = d.samples / fs;
+  const double min_duration =
+      std::max((options.floor_window_bins + 2) / alpha_need, 4.0 / kin.cage_hz);
+  if (duration < min_duration)
+    throw InputError("diagnose: too few samples: " + std::to_string(d.samples) + " (" +
+                     Fmt("%.3g", duration) + " s at " + Fmt("%g", fs) +
+                     " Hz); the analysis needs " + Fmt("%.3g", min_duration) + " s (" +
+                     std::to_string(static_cast<long>(std::ceil(min_duration * fs))) +
+                     " samples) to resolve the cage rate and the noise floor");
+
+  d.statistics = ComputeTimeStatistics(record.samples);
+
+  std::vector<double> whitened;
+  std::span<const double> x(record.samples);
+  if (options.prewhiten) {
+    whitened = CepstrumPrewhiten(record.samples);
+    x = whitened;
+  }
+  EnvelopeAnalyzer analyzer(x, fs);
+  const double df = analyzer.resolution_hz();
+
+  // Kurtogram: deep enough that the narrowest useful node (bandwidth >= alpha_need) exists,
+  // two levels deeper for the map, bounded by the automatic depth.
+  KurtogramOptions kopt;
+  const int auto_level = std::min(9, static_cast<int>(std::floor(std::log2(d.samples))) - 7);
+  const int needed_level =
+      std::max(1, static_cast<int>(std::floor(std::log2(fs / alpha_need))) - 1);
+  kopt.max_level = options.kurtogram_max_level > 0
+                       ? options.kurtogram_max_level
+                       : std::max(1, std::min(auto_level, needed_level + 2));
+  kopt.min_center_hz = alpha_need;
+  d.kurtogram = FastKurtogram(analyzer, kopt);
+  d.kurtogram_best = d.kurtogram.best;
+
+  // Shaft speed from the raw spectrum (the record as given, lines intact).
+  std::optional<double> shaft_measured;
+  if (options.speed_search > 0.0) {
+    if (options.prewhiten) {
+      EnvelopeAnalyzer raw(record.samples, fs);
+      shaft_measured = EstimateShaftSpeed(raw, shaft_hz, options.speed_search);
+    } else {
+      shaft_measured = EstimateShaftSpeed(analyzer, shaft_hz, options.speed_search);
+    }
+  }
+  d.measured_shaft_hz = shaft_measured;
+
+  // Candidate bands.
+  std::vector<KurtogramNode> candidates;
+  for (const auto& node : d.kurtogram.Nodes()) {
+    const Band b = node.band();
+    if (b.width_hz() >= alpha_need && b.low_hz >= 0.5 * alpha_need) candidates.push_back(node);
+  }
+  if (candidates.empty())
+    throw InputError("diagnose: no demodulation band of width >= " + Fmt("%.0f", alpha_need) +
+                     " Hz fits below fs/2 = " + Fmt("%.0f", 0.5 * fs) + " Hz");
+  d.candidate_bands = static_cast<int>(candidates.size());
+  d.multiplicity = double(kFamilies) * d.candidate_bands;
+
+  DetectionOptions dopt;
+  dopt.false_alarm_probability = options.false_alarm_probability;
+  dopt.tolerance = options.tolerance;
+  dopt.floor_window_bins = options.floor_window_bins;
+  dopt.line_p_value = options.line_p_value;
+  dopt.min_modulation = options.min_modulation;
+  DetectionContext ctx;
+  ctx.shaft_hz = shaft_hz;
+  ctx.multiplicity = d.multiplicity;
+  if (shaft_measured) {
+    ctx.center_scale = *shaft_measured / shaft_hz;
+    ctx.measured_shaft_scale = ctx.center_scale;
+  }
+
+  const int floor_half = options.floor_window_bins / 2 + 2;
+  std::optional<BandResult> best;
+  std::optional<BandResult> kurt_choice;
+  bool kurt_choice_is_best = false;
+  for (const auto& node : candidates) {
+    BandResult r;
+    r.node = node;
+    EnvelopeOptions eopt;
+    const Band band = node.band();
+    eopt.max_alpha_hz = std::min(band.width_hz(), alpha_need + floor_half * df);
+    r.ses = analyzer.Compute(band, eopt);
+    std::vector<double> power(r.ses.level.size());
+    for (size_t i = 0; i < power.size(); ++i) power[i] = r.ses.level[i] * r.ses.level[i];
+    r.normalized = NormalizeSpectrum(power, r.ses.resolution_hz, dopt);
+    r.normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
+    // Cage first: when its comb is detected, its harmonics are non-evidence for the inner race
+    // and rolling element (f_b ~ 11.8 f_c for a 6205).
+    const FamilyDetection cage = DetectFamily(r.normalized, d.families[3], ctx, dopt);
+    DetectionContext others = ctx;
+    if (cage.detected) others.exclude_harmonics_of_hz.push_back(cage.fundamental_hz);
+    // Not for the outer race: BPFO = Z f_c exactly, so its lines are always cage harmonics.
+    r.detections.push_back(DetectFamily(r.normalized, d.families[0], ctx, dopt));
+    for (int i = 1; i < 3; ++i)
+      r.detections.push_back(DetectFamily(r.normalized, d.families[i], others, dopt));
+    r.detections.push_back(cage);
+    for (const auto& det : r.detections) r.best_p = std::min(r.best_p, det.p_value);
+    const bool is_kurtogram_best =
+        std::abs(node.center_hz - d.kurtogram.best.center_hz) < 1e-9 &&
+        std::abs(node.bandwidth_hz - d.kurtogram.best.bandwidth_hz) < 1e-9;
+    if (!best || BandKey(r) > BandKey(*best)) best = r;
+    if (!kurt_choice || (!kurt_choice_is_best &&
+                         (is_kurtogram_best || node.kurtosis > kurt_choice->node.kurtosis))) {
+      kurt_choice = r;
+      kurt_choice_is_best = is_kurtogram_best;
+    }
+  }
+
+  // Without any significant comb, report the band the kurtogram prefers (among candidates).
+  BandResult chosen;
+  bool any_significant = false;
+  for (const auto& det : best->detections)
+    any_significant |= det.p_value <= options.false_alarm_probability;
+  if (any_significant) {
+    chosen = std::move(*best);
+    d.band_selection = "fault_evidence";
+  } else {
+    chosen = std::move(*kurt_choice);
+    d.band_selection = "kurtogram";
+  }
+  d.band = chosen.node.band();
+  d.band_kurtosis = chosen.node.kurtosis;
+  d.band_level = chosen.node.level;
+  d.ses = std::move(chosen.ses);
+  d.normalized = std::move(chosen.normalized);
+  d.faults = std::move(chosen.detections);
+
+  // Measured rates before sorting (families are in kFaultComponents order here).
+  const FamilyDetection& rolling = d.faults[2];
+  const FamilyDetection& cage = d.faults[3];
+  if (rolling.detected) {
+    d.measured_f_b_hz = rolling.fundamental_hz;
+    // f_c from the sideband spacing around significant harmonics with both sidebands.
+    double sum = 0.0;
+    int count = 0;
+    for (const auto& h : rolling.lines) {
+      if (h.line.is_sideband()) continue;
+      const LineEvidence *lo = nullptr, *hi = nullptr;
+      for (const auto& s : rolling.lines) {
+        if (!s.line.is_sideband() || s.line.harmonic != h.line.harmonic || !s.significant) continue;
+        (s.line.sideband < 0 ? lo : hi) = &s;
+      }
+      if (lo && hi) {
+        sum += 0.5 * (hi->freq_hz - lo->freq_hz);
+        ++count;
+      }
+    }
+    if (count > 0) d.measured_f_c_hz = sum / count;
+  }
+  if (!d.measured_f_c_hz && cage.p_value <= options.false_alarm_probability &&
+      cage.significant_harmonics >= 1)
+    d.measured_f_c_hz = cage.fundamental_hz;
+  if (d.measured_f_b_hz) d.f_b_slip_percent = (*d.measured_f_b_hz / kin.f_b_hz - 1.0) * 100.0;
+  if (d.measured_f_c_hz) d.f_c_slip_percent = (*d.measured_f_c_hz / kin.cage_hz - 1.0) * 100.0;
+
+  // Ranking: detected first, then by significance (score margin over the threshold, which
+  // orders like -log p but does not saturate at p = 0).
+  std::stable_sort(d.faults.begin(), d.faults.end(), [](const auto& a, const auto& b) {
+    if (a.detected != b.detected) return a.detected;
+    // A roller fault is modulated at the cage rate, so its SES also carries f_c lines: when
+    // both are detected, the roller family (f_b lines) explains the cage lines, not vice versa.
+    if (a.detected && a.component == FaultComponent::kRollingElement &&
+        b.component == FaultComponent::kCage)
+      return true;
+    if (b.detected && b.component == FaultComponent::kRollingElement &&
+        a.component == FaultComponent::kCage)
+      return false;
+    if (a.detected && a.harmonic_evidence != b.harmonic_evidence)
+      return a.harmonic_evidence > b.harmonic_evidence;
+    if (a.p_value != b.p_value) return a.p_value < b.p_value;
+    return a.score - a.threshold > b.score - b.threshold;
+  });
+  d.verdict = d.faults.front().detected ? ComponentName(d.faults.front().component) : "healthy";
+  return d;
+}
+
+// ------------------------------------------------------------------------------------------------
+// Rendering
+
+namespace {
+
+double FamilyKinematicHz(const Diagnosis& d, FaultComponent c) {
+  for (const auto& f : d.families)
+    if (f.component == c) return f.fundamental_hz;
+  return 0.0;
+}
+
+nlohmann::ordered_json Opt(const std::optional<double>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+double Finite(double v) { return std::isfinite(v) ? v : -1.0; }
+
+}  // namespace
+
+std::string Diagnosis::ToJson(int indent) const {
+  using nlohmann::ordered_json;
+  ordered_json j;
+  j["verdict"] = verdict;
+  ordered_json faults_json = ordered_json::array();
+  for (const auto& f : faults) {
+    ordered_json fj;
+    fj["component"] = ComponentName(f.component);
+    fj["detected"] = f.detected;
+    fj["score"] = f.score;
+    fj["threshold"] = Finite(f.threshold);
+    fj["p_value"] = f.p_value;
+    fj["false_alarm_probability"] = options.false_alarm_probability;
+    fj["speed_scale"] = f.scale;
+    fj["kinematic_hz"] = FamilyKinematicHz(*this, f.component);
+    fj["measured_hz"] = f.fundamental_hz;
+    fj["lines_used"] = f.lines_used;
+    fj["combinations"] = f.combinations;
+    fj["significant_harmonics"] = f.significant_harmonics;
+    fj["significant_sidebands"] = f.significant_sidebands;
+    fj["reason"] = f.reason;
+    ordered_json lines = ordered_json::array();
+    for (const auto& l : f.lines) {
+      ordered_json lj;
+      lj["label"] = l.line.label;
+      lj["harmonic"] = l.line.harmonic;
+      lj["sideband"] = l.line.sideband;
+      lj["nominal_hz"] = l.line.nominal_hz;
+      lj["frequency_hz"] = l.freq_hz;
+      lj["level"] = std::sqrt(std::max(l.power, 0.0));
+      lj["snr"] = l.z;
+      lj["modulation"] = l.modulation;
+      lj["p_value"] = l.p_value;
+      lj["significant"] = l.significant;
+      lj["excluded"] = l.excluded ? ordered_json(l.exclusion) : ordered_json(nullptr);
+      lines.push_back(lj);
+    }
+    fj["harmonics"] = lines;
+    faults_json.push_back(fj);
+  }
+  j["faults"] = faults_json;
+  j["band"] = {{"low_hz", band.low_hz},
+               {"high_hz", band.high_hz},
+               {"center_hz", band.center_hz()},
+               {"bandwidth_hz", band.width_hz()},
+               {"kurtogram_level", band_level},
+               {"kurtosis", band_kurtosis},
+               {"selection", band_selection},
+               {"candidates", candidate_bands}};
+  j["kurtogram"] = {{"best_center_hz", kurtogram_best.center_hz},
+                    {"best_bandwidth_hz", kurtogram_best.bandwidth_hz},
+                    {"best_level", kurtogram_best.level},
+                    {"best_kurtosis", kurtogram_best.kurtosis},
+                    {"max_level", kurtogram.max_level}};
+  j["kinematics"] = {{"bearing", bearing},
+                     {"shaft_hz", kinematics.shaft_hz},
+                     {"cage_hz", kinematics.cage_hz},
+                     {"roller_spin_hz", kinematics.roller_spin_hz},
+                     {"f_b_hz", kinematics.f_b_hz},
+                     {"bpfo_hz", kinematics.bpfo_hz},
+                     {"bpfi_hz", kinematics.bpfi_hz}};
+  j["measured"] = {{"shaft_hz", Opt(measured_shaft_hz)},
+                   {"f_b_hz", Opt(measured_f_b_hz)},
+                   {"f_c_hz", Opt(measured_f_c_hz)},
+                   {"slip_percent", Opt(f_b_slip_percent)},
+                   {"f_c_slip_percent", Opt(f_c_slip_percent)}};
+  j["statistics"] = {{"mean", statistics.mean},
+                     {"rms", statistics.rms},
+                     {"peak", statistics.peak},
+                     {"crest_factor", statistics.crest_factor},
+                     {"kurtosis", statistics.kurtosis},
+                     {"skewness", statistics.skewness}};
+  j["record"] = {{"source", source},
+                 {"channel", channel},
+                 {"units", units},
+                 {"sample_rate_hz", sample_rate_hz},
+                 {"samples", samples},
+                 {"duration_s", sample_rate_hz > 0 ? samples / sample_rate_hz : 0.0}};
+  j["settings"] = {{"harmonics", options.harmonics},
+                   {"tolerance_percent", options.tolerance * 100.0},
+                   {"false_alarm_probability", options.false_alarm_probability},
+                   {"line_p_value", options.line_p_value},
+                   {"min_modulation", options.min_modulation},
+                   {"prewhiten", options.prewhiten},
+                   {"multiplicity", multiplicity},
+                   {"ses_resolution_hz", ses.resolution_hz}};
+  return j.dump(indent);
+}
+
+std::string Diagnosis::BriefReport() const {
+  std::string out;
+  char buf[512];
+  std::snprintf(buf,
+                sizeof buf,
+                "record: %s (%d samples, %.0f Hz, %.2f s)\n",
+                source.empty() ? "(memory)" : source.c_str(),
+                samples,
+                sample_rate_hz,
+                sample_rate_hz > 0 ? samples / sample_rate_hz : 0.0);
+  out += buf;
+  std::snprintf(
+      buf,
+      sizeof buf,
+      "bearing: %s at %.3f Hz (%.1f rpm): f_c %.2f Hz, f_b (2xBSF) %.2f Hz, BPFO %.2f Hz, "
+      "BPFI %.2f Hz\n",
+      bearing.c_str(),
+      kinematics.shaft_hz,
+      kinematics.shaft_hz * 60.0,
+      kinematics.cage_hz,
+      kinematics.f_b_hz,
+      kinematics.bpfo_hz,
+      kinematics.bpfi_hz);
+  out += buf;
+  if (measured_shaft_hz)
+    std::snprintf(buf,
+                  sizeof buf,
+                  "shaft speed: measured %.3f Hz (%+.2f %% from nominal)\n",
+                  *measured_shaft_hz,
+                  (*measured_shaft_hz / kinematics.shaft_hz - 1.0) * 100.0);
+  else
+    std::snprintf(buf, sizeof buf, "shaft speed: not measurable, nominal used\n");
+  out += buf;
+  std::snprintf(buf,
+                sizeof buf,
+                "band: %.0f-%.0f Hz (centre %.0f Hz, width %.0f Hz, kurtogram level %.1f, "
+                "kurtosis %.2f), chosen by %s among %d candidates\n",
+                band.low_hz,
+                band.high_hz,
+                band.center_hz(),
+                band.width_hz(),
+                band_level,
+                band_kurtosis,
+                band_selection == "kurtogram" ? "kurtogram" : "fault evidence",
+                candidate_bands);
+  out += buf;
+  std::snprintf(buf,
+                sizeof buf,
+                "VERDICT: %s   (false-alarm probability %.2g per record)\n",
+                verdict.c_str(),
+                options.false_alarm_probability);
+  out += buf;
+  out +=
+      "  rank component        detected  p-value    score/threshold  harm.  sideb.  fundamental\n";
+  int rank = 1;
+  for (const auto& f : faults) {
+    int harm = 0, sb = 0;
+    for (const auto& l : f.lines) (l.line.is_sideband() ? sb : harm) += l.excluded ? 0 : 1;
+    std::snprintf(buf,
+                  sizeof buf,
+                  "  %-4d %-16s  %-8s  %-9.2g  %6.1f/%-6.1f    %d/%-3d  %2d/%-3d  %.3f Hz "
+                  "(kinematic %.3f)\n",
+                  rank++,
+                  ComponentName(f.component),
+                  f.detected ? "YES" : "no",
+                  f.p_value,
+                  f.score,
+                  Finite(f.threshold),
+                  f.significant_harmonics,
+                  harm,
+                  f.significant_sidebands,
+                  sb,
+                  f.fundamental_hz,
+                  FamilyKinematicHz(*this, f.component));
+    out += buf;
+  }
+  auto opt = [](const std::optional<double>& v, const std::optional<double>& slip) {
+    if (!v) return std::string("not found");
+    char b[96];
+    std::snprintf(b, sizeof b, "%.3f Hz (slip %+.2f %%)", *v, slip ? *slip : 0.0);
+    return std::string(b);
+  };
+  out += "measured f_b: " + opt(measured_f_b_hz, f_b_slip_percent) +
+         ", f_c: " + opt(measured_f_c_hz, f_c_slip_percent) + "\n";
+  std::snprintf(buf,
+                sizeof buf,
+                "time statistics: rms %.4g, peak %.4g, crest factor %.2f, kurtosis %.2f%s%s\n",
+                statistics.rms,
+                statistics.peak,
+                statistics.crest_factor,
+                statistics.kurtosis,
+                units.empty() ? "" : ", units ",
+                units.c_str());
+  out += buf;
+  return out;
+}
+
+}  // namespace spallkit::dsp

@@ -1,0 +1,102 @@
+// The envelope-analysis diagnosis of one record: band selection, squared envelope spectrum, fault
+// families, detection with a controlled false-alarm rate, and a verdict.
+//
+//   record --(optional cepstrum pre-whitening)--> one FFT (EnvelopeAnalyzer)
+//          --> fast kurtogram (all nodes of the 1/3-binary tree)
+//          --> candidate bands: nodes wide enough to hold every fault line searched (bandwidth >=
+//              highest line) and starting above half of it (keeps shaft and mains lines of the raw
+//              signal out of the demodulation band, where they would beat into SES lines)
+//          --> per candidate: SES, robust floor, comb detection of the four families
+//          --> chosen band = the candidate with the strongest family evidence (smallest corrected
+//              p-value); the kurtogram's best node when no family shows anything
+//          --> ranking by p-value; verdict = best detected family, else "healthy".
+// The false-alarm budget (DiagnoseOptions::false_alarm_probability, per record) is split by
+// Bonferroni over 4 families x all candidate bands x the comb combinations of each family (see
+// dsp/detection.h), so a Gaussian-noise record is called faulty with probability <= that budget.
+//
+// Shaft speed: the comb search is centred on the shaft speed measured from the raw spectrum
+// (harmonics 1..5 of f_r within +/- speed_search of the nominal) when it is found, so a nominal
+// speed a few percent off does not move the fault lines out of the +/- tolerance window.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/bearing.h"
+#include "dsp/detection.h"
+#include "dsp/envelope.h"
+#include "dsp/fault_bands.h"
+#include "dsp/kurtogram.h"
+#include "dsp/record.h"
+#include "dsp/statistics.h"
+
+namespace spallkit::dsp {
+
+struct DiagnoseOptions {
+  int harmonics = 5;                      // harmonics 1..N of each family
+  double tolerance = 0.02;                // +/- slip / speed tolerance of every line (relative)
+  double speed_search = 0.05;             // +/- range of the shaft-speed search (relative)
+  double false_alarm_probability = 1e-3;  // per record, all families and bands together
+  bool prewhiten = false;                 // cepstrum pre-whitening before everything else
+  int kurtogram_max_level = 0;            // 0: automatic (see dsp/kurtogram.h)
+  int floor_window_bins = 401;            // running-median window of the SES floor
+  double line_p_value = 1e-3;             // "individually significant" line
+  double min_modulation = 0.12;           // ...and modulating >= this fraction of mean(SE)
+
+  bool IsValid(std::string* error) const;
+};
+
+// Everything the diagnosis found, in SI units (Hz). BriefReport() and ToJson() render it.
+struct Diagnosis {
+  std::string verdict;  // "healthy", "outer_race", "inner_race", "rolling_element", "cage"
+  std::vector<FamilyDetection> faults;  // all four families, most significant first
+  std::vector<FaultFamily> families;    // kinematic lines searched (same order as kFaultComponents)
+
+  Band band;                   // demodulation band used for the reported SES
+  double band_kurtosis = 0.0;  // spectral kurtosis of that node
+  double band_level = 0.0;     // kurtogram level of that node
+  std::string band_selection;  // "fault_evidence" or "kurtogram"
+  KurtogramNode kurtogram_best;
+  int candidate_bands = 0;
+  double multiplicity = 0.0;  // families x candidate bands (Bonferroni factor on top of combs)
+
+  BearingFrequencies kinematics;  // at the nominal speed
+  std::string bearing;
+  std::optional<double> measured_shaft_hz;
+  std::optional<double> measured_f_b_hz, measured_f_c_hz;
+  std::optional<double> f_b_slip_percent, f_c_slip_percent;  // measured / kinematic - 1, in %
+
+  TimeStatistics statistics;  // of the record as given (before pre-whitening)
+  double sample_rate_hz = 0.0;
+  int samples = 0;
+  std::string source, channel, units;
+  DiagnoseOptions options;
+
+  EnvelopeSpectrum ses;           // SES of the chosen band (level = |FFT(SE - mean)|/N)
+  NormalizedSpectrum normalized;  // SES power over its floor, same bins
+  Kurtogram kurtogram;
+
+  // The family ranked first (nullptr if none).
+  const FamilyDetection* Best() const { return faults.empty() ? nullptr : &faults.front(); }
+  // A few readable lines: verdict, band, ranked families with their evidence, measured rates.
+  std::string BriefReport() const;
+  // One JSON object; keys documented in docs/DIAGNOSIS.md (stable).
+  std::string ToJson(int indent = 2) const;
+};
+
+// Throws InputError for a non-positive shaft speed or sample rate, fault frequencies above
+// Nyquist, a record too short for the analysis, or invalid options.
+Diagnosis Diagnose(const Record& record,
+                   const BearingGeometry& bearing,
+                   double shaft_hz,
+                   const DiagnoseOptions& options = {});
+
+// Speed estimate from the raw spectrum: shaft harmonics 1..5 searched as a comb within
+// +/- search of nominal_hz. Returns the measured shaft frequency when the comb is significant
+// (p <= 1e-3 and >= 2 harmonics), else nullopt.
+std::optional<double> EstimateShaftSpeed(const EnvelopeAnalyzer& analyzer,
+                                         double nominal_hz,
+                                         double search);
+
+}  // namespace spallkit::dsp
