@@ -1,0 +1,117 @@
+// Runs the built `spall` binary: `frequencies` and `diagnose` outputs, and bad input -> one line on
+// stderr with exit code 2.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "dsp/record.h"
+#include "tests/dsp/diagnose_test_signals.h"
+
+namespace {
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+Result RunSpall(const std::string& args) {
+  const std::string err_path = std::filesystem::temp_directory_path() / "spall_cli_err.txt";
+  const std::string cmd = std::string(SPALLKIT_SPALL_EXE) + " " + args + " 2>" + err_path;
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  return r;
+}
+
+std::string WriteSynthetic(const std::string& name, double seconds, bool fault) {
+  spallkit::testing::FaultSignalSpec s;
+  s.fs_hz = 12000;
+  s.duration_s = seconds;
+  s.amplitude = 3.0;
+  s.noise_rms = 0.4;
+  if (fault) s.rate_hz = 107.36 * 0.99;  // 6205 BPFO at 1797 rpm, 1 % slip
+  const auto x = spallkit::testing::MakeFaultSignal(s);
+  std::vector<double> t(x.size());
+  for (size_t i = 0; i < t.size(); ++i) t[i] = i / s.fs_hz;
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  spallkit::dsp::WriteCsvRecord(path, {{"time_s", t}, {"accel_g", x}});
+  return path;
+}
+
+TEST(FrequenciesCli, JsonHasOrdersAndTheFbConvention) {
+  const Result r = RunSpall("frequencies --bearing N205EM --rpm 1200 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["frequencies"]["f_b"]["hz"].get<double>(), 115.08, 0.01);
+  EXPECT_NEAR(j["frequencies"]["cage"]["hz"].get<double>(), 8.31, 0.005);
+  EXPECT_NEAR(j["frequencies"]["f_b"]["hz"].get<double>(),
+              2 * j["frequencies"]["roller_spin"]["hz"].get<double>(),
+              1e-9);
+  EXPECT_NEAR(j["frequencies"]["bpfo"]["order"].get<double>(), 108.052 / 20.0, 1e-4);
+  EXPECT_EQ(j["families"]["inner_race"].size(), 9u);  // 3 harmonics + 6 sidebands
+}
+
+TEST(FrequenciesCli, ExplicitGeometryMatchesCatalogue) {
+  const Result a = RunSpall("frequencies --bearing 6205 --rpm 1797 --json");
+  const Result b = RunSpall(
+      "frequencies --elements 9 --element-diameter-mm 7.94 --pitch-diameter-mm 39.04 --rpm 1797 "
+      "--json");
+  ASSERT_EQ(a.code, 0);
+  ASSERT_EQ(b.code, 0);
+  EXPECT_NEAR(nlohmann::json::parse(a.out)["frequencies"]["bpfi"]["hz"].get<double>(),
+              nlohmann::json::parse(b.out)["frequencies"]["bpfi"]["hz"].get<double>(),
+              1e-9);
+}
+
+TEST(DiagnoseCli, OuterRaceJsonAndPlots) {
+  const std::string path = WriteSynthetic("spall_cli_outer.csv", 2.0, true);
+  const std::string dir = (std::filesystem::temp_directory_path() / "spall_cli_plots").string();
+  std::filesystem::remove_all(dir);
+  const Result r =
+      RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --json --plot-dir " + dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["verdict"], "outer_race");
+  EXPECT_TRUE(j["faults"][0]["detected"].get<bool>());
+  for (const char* f : {"ses.png", "spectrogram.png", "kurtogram.png"})
+    EXPECT_GT(std::filesystem::file_size(std::filesystem::path(dir) / f), 10000u) << f;
+  const Result text = RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797");
+  EXPECT_EQ(text.code, 0);
+  EXPECT_NE(text.out.find("VERDICT: outer_race"), std::string::npos) << text.out;
+}
+
+void ExpectError(const std::string& args, const std::string& needle) {
+  const Result r = RunSpall(args);
+  EXPECT_EQ(r.code, 2) << args;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << args << " -> " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST(DiagnoseCli, BadInputIsOneLineAndExitCode2) {
+  const std::string path = WriteSynthetic("spall_cli_noise.csv", 2.0, false);
+  const std::string shortp = WriteSynthetic("spall_cli_short.csv", 0.1, false);
+  ExpectError("diagnose " + path + " --bearing 6205 --rpm 0", "--rpm must be > 0");
+  ExpectError("diagnose " + path + " --bearing 6205 --rpm -100", "--rpm must be > 0");
+  ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --fs 0", "--fs must be > 0");
+  ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --fs -5", "--fs must be > 0");
+  ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --fs 200", "above Nyquist");
+  ExpectError("diagnose " + shortp + " --bearing 6205 --rpm 1797", "too few samples");
+  ExpectError("diagnose /nonexistent/x.csv --bearing 6205 --rpm 1797", "x.csv");
+  ExpectError("diagnose " + path + " --bearing X999 --rpm 1797", "unknown bearing");
+  ExpectError("diagnose " + path + " --rpm 1797", "no bearing");
+  ExpectError("frequencies --bearing 6205 --rpm 0", "--rpm must be > 0");
+}
+
+}  // namespace
