@@ -58,7 +58,7 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
   out.z.assign(n, 0.0);
 
   // Median of the window [start, start + w) around anchor bins spaced `step` apart.
-  const int step = std::max(1, w / 16);
+  const int step = std::max(1, w / 6);
   std::vector<int> anchors;
   for (int i = 1; i < n; i += step) anchors.push_back(i);
   if (anchors.back() != n - 1) anchors.push_back(n - 1);
@@ -198,6 +198,16 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
   const double ds = f_top > 0.0 ? 0.5 * df / f_top : 1.0;
   const int grid = std::max(1, static_cast<int>(std::ceil((s_hi - s_lo) / ds)) + 1);
 
+  // -ln p of the larger of bins (i, i+1), capped, for every bin: the grid walk is table look-ups.
+  std::vector<double> pair_score(nbins, 0.0);
+  double f_low = std::numeric_limits<double>::infinity();
+  for (const auto& l : family.lines) f_low = std::min(f_low, l.nominal_hz);
+  const int i_first = std::max(0, static_cast<int>(std::floor(f_low * s_lo / df)) - 1);
+  const int i_last = std::min(nbins - 1, static_cast<int>(std::ceil(f_top / df)) + 2);
+  for (int i = i_first; i < i_last && i + 1 < nbins; ++i) {
+    const double p = spectrum.PairPValue(std::max(spectrum.z[i], spectrum.z[i + 1]));
+    pair_score[i] = std::min(-std::log(std::max(p, 1e-300)), options.max_line_score);
+  }
   std::vector<int> bins(nl, -1), prev_bins(nl, -2);
   double best_score = -1.0, best_s = c;
   int best_used = 0;
@@ -214,10 +224,8 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
         continue;
       }
       const int i0 = static_cast<int>(std::floor(f / df));
-      const int i = spectrum.z[i0 + 1] > spectrum.z[i0] ? i0 + 1 : i0;
       bins[l] = i0;
-      const double p = spectrum.PairPValue(spectrum.z[i]);
-      score += std::min(-std::log(std::max(p, 1e-300)), options.max_line_score);
+      score += pair_score[i0];
       ++used;
     }
     if (bins != prev_bins) {
@@ -226,11 +234,17 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
     }
     max_used = std::max(max_used, used);
     // Compare combs with different M by their Gamma tail, not the raw sum.
-    const double better =
-        used > 0 ? -LogGammaUpperTail(used, score) : -std::numeric_limits<double>::infinity();
-    const double current = best_used > 0 ? -LogGammaUpperTail(best_used, best_score)
-                                         : -std::numeric_limits<double>::infinity();
-    if (better > current) {
+    bool improves;
+    if (used == best_used) {
+      improves = used > 0 && score > best_score;
+    } else {
+      const double better =
+          used > 0 ? -LogGammaUpperTail(used, score) : -std::numeric_limits<double>::infinity();
+      const double current = best_used > 0 ? -LogGammaUpperTail(best_used, best_score)
+                                           : -std::numeric_limits<double>::infinity();
+      improves = better > current;
+    }
+    if (improves) {
       best_score = score;
       best_s = s;
       best_used = used;

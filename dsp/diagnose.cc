@@ -69,6 +69,7 @@ std::optional<double> EstimateShaftSpeed(const EnvelopeAnalyzer& analyzer,
 namespace {
 
 constexpr int kFamilies = 4;
+constexpr double kMaxWidthFactor = 8.0;
 
 // Highest cyclic frequency any family can put a line at, with the search range.
 double NeededAlpha(const std::vector<FaultFamily>& families, double max_scale) {
@@ -219,7 +220,11 @@ Diagnosis Diagnose(const Record& record,
   std::vector<KurtogramNode> candidates;
   for (const auto& node : d.kurtogram.Nodes()) {
     const Band b = node.band();
-    if (b.width_hz() >= alpha_need && b.low_hz >= 0.5 * alpha_need) candidates.push_back(node);
+    // Nodes much wider than the lines need only dilute a resonance with noise and cost the
+    // most to demodulate: keep widths in [alpha_need, 8 alpha_need].
+    if (b.width_hz() >= alpha_need && b.width_hz() <= kMaxWidthFactor * alpha_need &&
+        b.low_hz >= 0.5 * alpha_need)
+      candidates.push_back(node);
   }
   if (candidates.empty())
     throw InputError("diagnose: no demodulation band of width >= " + Fmt("%.0f", alpha_need) +
