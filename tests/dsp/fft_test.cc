@@ -114,6 +114,22 @@ TEST(ComplexFft, InputIsPreservedOutOfPlace) {
   EXPECT_EQ(x, copy);
 }
 
+TEST(ComplexFftF, MatchesNaiveDftToSinglePrecision) {
+  const int n = 60;
+  std::mt19937 rng(4);
+  std::normal_distribution<double> g;
+  std::vector<cd> x(n);
+  for (auto& v : x) v = cd(g(rng), g(rng));
+  auto in = spallkit::dsp::AllocateComplexF(n);
+  auto out = spallkit::dsp::AllocateComplexF(n);
+  for (int i = 0; i < n; ++i) in[i] = std::complex<float>(x[i]);
+  spallkit::dsp::ComplexFftF fft(n, +1);
+  EXPECT_EQ(fft.size(), n);
+  fft.Execute(in.get(), out.get());
+  const auto ref = NaiveDft(x, +1);
+  for (int k = 0; k < n; ++k) EXPECT_LT(std::abs(cd(out[k]) - ref[k]), 1e-5 * n) << k;
+}
+
 TEST(FftFriendlySize, SmallestSevenSmoothSizeNotBelowN) {
   EXPECT_EQ(FftFriendlySize(1), 1);
   EXPECT_EQ(FftFriendlySize(11), 12);

@@ -80,7 +80,7 @@ TEST(FastKurtogram, NodeKurtosisMatchesBesselEnvelopeValue) {
   }
 }
 
-// The kurtosis of each node equals the one computed from the full-rate
+// The kurtosis of each node equals (to single-precision rounding) the one from the full-rate
 // complex envelope (ideal band on the N-point grid, N-point inverse FFT), from the definition.
 TEST(FastKurtogram, NodeKurtosisEqualsFullRateDefinition) {
   test_signals::BearingLikeSignal s;
@@ -111,7 +111,7 @@ TEST(FastKurtogram, NodeKurtosisEqualsFullRateDefinition) {
         m4 += std::norm(v) * std::norm(v) / n;
       }
       const double ref = std::max(0.0, m4 / (m2 * m2) - 2);
-      ASSERT_NEAR(exact.kurtosis[r][i], ref, 1e-9 * std::max(1.0, ref)) << r << " " << i;
+      ASSERT_NEAR(exact.kurtosis[r][i], ref, 1e-6 * std::max(1.0, ref)) << r << " " << i;
     }
   }
 }
