@@ -1,0 +1,96 @@
+#include "sim/bearing/constraints.h"
+
+#include <cstring>
+
+#include "core/error.h"
+
+namespace spallkit::sim {
+namespace {
+
+std::string PackDouble(double v) {
+  std::string s(sizeof v, '\0');
+  std::memcpy(s.data(), &v, sizeof v);
+  return s;
+}
+
+double UnpackDouble(const std::string& bytes, const std::string& who) {
+  double v = 0.0;
+  if (bytes.size() != sizeof v) throw InputError("checkpoint: bad state size for '" + who + "'");
+  std::memcpy(&v, bytes.data(), sizeof v);
+  return v;
+}
+
+}  // namespace
+
+RigidPart::RigidPart(std::string name, std::vector<int> nodes)
+    : name_(std::move(name)), nodes_(std::move(nodes)) {
+  if (nodes_.size() < 2) throw InputError("rigid part '" + name_ + "': needs at least 2 nodes");
+}
+
+RigidPart::Motion RigidPart::ComputeMotion(const fe::NodalState& s) const {
+  Motion m;
+  double sx = 0, sy = 0, px = 0, py = 0, lz = 0, j0 = 0;
+  for (int id : nodes_) {
+    const double mi = s.mass[id];
+    m.mass += mi, sx += mi * s.x[id], sy += mi * s.y[id];
+    px += mi * s.vx[id], py += mi * s.vy[id];
+    lz += mi * (s.x[id] * s.vy[id] - s.y[id] * s.vx[id]);
+    j0 += mi * (s.x[id] * s.x[id] + s.y[id] * s.y[id]);
+  }
+  m.cx = sx / m.mass, m.cy = sy / m.mass, m.vx = px / m.mass, m.vy = py / m.mass;
+  m.inertia = j0 - m.mass * (m.cx * m.cx + m.cy * m.cy);
+  const double l = lz - m.mass * (m.cx * m.vy - m.cy * m.vx);
+  m.omega = m.inertia > 0 ? l / m.inertia : 0.0;
+  return m;
+}
+
+void RigidPart::AddForces(fe::NodalState& s, double /*t*/, double dt) {
+  const Motion m = ComputeMotion(s);
+  SPALLKIT_CHECK(m.inertia > 0.0, "rigid part '" << name_ << "' has no rotational inertia");
+  double fx = 0, fy = 0, tz = 0;
+  for (int id : nodes_) {
+    const double rx = s.x[id] - m.cx, ry = s.y[id] - m.cy;
+    fx += s.fx[id], fy += s.fy[id], tz += rx * s.fy[id] - ry * s.fx[id];
+  }
+  const double ax = fx / m.mass, ay = fy / m.mass, alpha = tz / m.inertia;
+  const double w2 = m.omega * m.omega;
+  double power = 0.0;
+  for (int id : nodes_) {
+    const double mi = s.mass[id];
+    const double rx = s.x[id] - m.cx, ry = s.y[id] - m.cy;
+    const double nfx = mi * (ax - alpha * ry - w2 * rx);
+    const double nfy = mi * (ay + alpha * rx - w2 * ry);
+    power += (nfx - s.fx[id]) * s.vx[id] + (nfy - s.fy[id]) * s.vy[id];
+    s.fx[id] = nfx, s.fy[id] = nfy;
+  }
+  work_ += power * dt;
+}
+
+std::string RigidPart::SaveState() const { return PackDouble(work_); }
+void RigidPart::LoadState(const std::string& bytes) { work_ = UnpackDouble(bytes, name_); }
+
+TiedNodes::TiedNodes(std::string name, std::vector<std::pair<int, int>> pairs)
+    : name_(std::move(name)), pairs_(std::move(pairs)) {
+  if (pairs_.empty()) throw InputError("tied nodes '" + name_ + "': no node pairs");
+}
+
+void TiedNodes::AddForces(fe::NodalState& s, double /*t*/, double /*dt*/) {
+  for (const auto& [a, b] : pairs_) {
+    const double ma = s.mass[a], mb = s.mass[b], m = ma + mb;
+    const double wa = ma / m, wb = mb / m;
+    const double dvx = s.vx[a] - s.vx[b], dvy = s.vy[a] - s.vy[b];
+    dissipated_ += 0.5 * ma * mb / m * (dvx * dvx + dvy * dvy);
+    const double vx = wa * s.vx[a] + wb * s.vx[b], vy = wa * s.vy[a] + wb * s.vy[b];
+    const double x = wa * s.x[a] + wb * s.x[b], y = wa * s.y[a] + wb * s.y[b];
+    const double fx = s.fx[a] + s.fx[b], fy = s.fy[a] + s.fy[b];
+    s.vx[a] = s.vx[b] = vx, s.vy[a] = s.vy[b] = vy;
+    s.x[a] = s.x[b] = x, s.y[a] = s.y[b] = y;
+    s.fx[a] = wa * fx, s.fy[a] = wa * fy;
+    s.fx[b] = wb * fx, s.fy[b] = wb * fy;
+  }
+}
+
+std::string TiedNodes::SaveState() const { return PackDouble(dissipated_); }
+void TiedNodes::LoadState(const std::string& bytes) { dissipated_ = UnpackDouble(bytes, name_); }
+
+}  // namespace spallkit::sim

@@ -1,0 +1,79 @@
+// Two kinematic constraints the bearing section needs and the explicit solver does not offer,
+// written as ForceContributors (added LAST, after every contact pair, so that they see the full
+// nodal force):
+//
+//  - RigidPart: a node set that moves as ONE rigid body with free translation AND free rotation
+//    (the solver's RigidBody prescribes the rotation). Used for the cage: in the 2-D section the
+//    through-pockets cut the cage into Z webs whose joining side rims lie outside the plane, so
+//    the webs are made one rigid body (bearing-notes, docs/BEARING_MODEL.md). Each step it takes
+//    the resultant F and torque T (about the mass centre c) of the forces on the set, and
+//    replaces the force on node i by m_i (F / M + alpha e_z x r_i - omega^2 r_i), alpha = T / J,
+//    r_i = x_i - c: the exact rigid acceleration (translation, angular acceleration,
+//    centripetal). Resultant and torque are unchanged, so the constraint does no work on a rigid
+//    velocity field; the work it does do (rounding, the centripetal term's O(dt^2) error) is
+//    reported as ExternalWork() so the energy balance shows it.
+//
+//  - TiedNodes: pairs of coincident nodes of two parts (outer ring outside / adapter seat) that
+//    move together. Each step the pair's velocities and positions are set to their
+//    mass-weighted means (momentum conserving) and the pair's total force is shared in
+//    proportion to mass, so both get the same acceleration. The averaging removes the tiny
+//    velocity difference left by part-relative mass damping; the kinetic energy it removes is
+//    reported as DissipatedEnergy().
+//
+// Neither keeps history besides cumulative energies, which SaveState/LoadState carry.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sim/solver/force_contributor.h"
+
+namespace spallkit::sim {
+
+class RigidPart : public solver::ForceContributor {
+ public:
+  // nodes: the rigid set (>= 2 nodes, not all coincident). The masses are read at the first step.
+  RigidPart(std::string name, std::vector<int> nodes);
+
+  void AddForces(fe::NodalState& state, double t, double dt) override;
+  double ExternalWork() const override { return work_; }
+  std::string Name() const override { return name_; }
+  std::string SaveState() const override;
+  void LoadState(const std::string& bytes) override;
+
+  // Rigid motion of the set from positions x^n and velocities v^(n-1/2) (any time).
+  struct Motion {
+    double cx = 0, cy = 0;    // mass centre, m
+    double vx = 0, vy = 0;    // mass-centre velocity, m/s
+    double omega = 0;         // spin, rad/s (counter-clockwise)
+    double mass = 0, inertia = 0;  // kg, kg m^2 about the mass centre
+  };
+  Motion ComputeMotion(const fe::NodalState& state) const;
+  const std::vector<int>& nodes() const { return nodes_; }
+
+ private:
+  std::string name_;
+  std::vector<int> nodes_;
+  double work_ = 0.0;
+};
+
+class TiedNodes : public solver::ForceContributor {
+ public:
+  // Pairs (a, b) of node ids; each node in at most one pair.
+  TiedNodes(std::string name, std::vector<std::pair<int, int>> pairs);
+
+  void AddForces(fe::NodalState& state, double t, double dt) override;
+  double DissipatedEnergy() const override { return dissipated_; }
+  std::string Name() const override { return name_; }
+  std::string SaveState() const override;
+  void LoadState(const std::string& bytes) override;
+  int num_pairs() const { return static_cast<int>(pairs_.size()); }
+
+ private:
+  std::string name_;
+  std::vector<std::pair<int, int>> pairs_;
+  double dissipated_ = 0.0;
+};
+
+}  // namespace spallkit::sim

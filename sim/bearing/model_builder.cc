@@ -1,0 +1,235 @@
+#include "sim/bearing/model_builder.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/error.h"
+#include "sim/contact/penalty.h"
+
+namespace spallkit::sim {
+namespace {
+
+const std::vector<int>& NodeSet(const fe::Mesh& mesh, const std::string& name) {
+  auto it = mesh.node_sets.find(name);
+  if (it == mesh.node_sets.end()) throw InputError("bearing model: mesh has no node set '" + name + "'");
+  return it->second;
+}
+
+const Material& PartMaterial(const Scene& scene, const std::string& part) {
+  const SceneMaterials& m = scene.materials;
+  if (part == "outer_ring") return m.outer_ring;
+  if (part == "inner_ring") return m.inner_ring;
+  if (part == "cage") return m.cage;
+  if (part == "adapter") return m.adapter;
+  if (part.rfind("roller", 0) == 0) return m.roller;
+  throw InputError("bearing model: no material for mesh part '" + part + "'");
+}
+
+BodyMotion FitMotion(const fe::NodalState& s, const std::vector<int>& nodes) {
+  double m = 0, sx = 0, sy = 0, px = 0, py = 0, lz = 0, j0 = 0;
+  for (int id : nodes) {
+    const double mi = s.mass[id];
+    m += mi, sx += mi * s.x[id], sy += mi * s.y[id], px += mi * s.vx[id], py += mi * s.vy[id];
+    lz += mi * (s.x[id] * s.vy[id] - s.y[id] * s.vx[id]);
+    j0 += mi * (s.x[id] * s.x[id] + s.y[id] * s.y[id]);
+  }
+  BodyMotion b;
+  b.cx = sx / m, b.cy = sy / m, b.vx = px / m, b.vy = py / m;
+  const double j = j0 - m * (b.cx * b.cx + b.cy * b.cy);
+  b.omega = j > 0 ? (lz - m * (b.cx * b.vy - b.cy * b.vx)) / j : 0.0;
+  return b;
+}
+
+}  // namespace
+
+bool BearingModelOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!(race_penalty_scale > 0)) return fail("bearing model: race_penalty_scale must be > 0");
+  if (!(cage_penalty_scale > 0)) return fail("bearing model: cage_penalty_scale must be > 0");
+  if (!(contact_damping_ratio >= 0 && contact_damping_ratio <= 1))
+    return fail("bearing model: contact_damping_ratio must be in [0, 1]");
+  if (!(load_ramp_fraction >= 0)) return fail("bearing model: load_ramp_fraction must be >= 0");
+  return true;
+}
+
+BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& options)
+    : scene_(scene), options_(options) {
+  std::string err;
+  if (!options_.IsValid(&err)) throw InputError(err);
+  mesh_ = MeshBearing(scene_);
+  const fe::Mesh& mesh = mesh_.mesh;
+  const double t = scene_.geometry.thickness_m;
+
+  std::vector<fe::Section> sections;
+  std::vector<double> bulk;
+  for (const std::string& part : mesh.part_names) {
+    const Material& mat = PartMaterial(scene_, part);
+    fe::Section s;
+    s.material = {mat.youngs_modulus_pa, mat.poisson_ratio, mat.density_kg_m3};
+    s.mode = fe::PlaneMode::kPlaneStrain;
+    s.thickness = t;
+    sections.push_back(s);
+    bulk.push_back(contact::BulkModulus(mat.youngs_modulus_pa, mat.poisson_ratio));
+  }
+
+  solver::SolverOptions so;
+  so.time_step_scale = scene_.solver.time_step_safety;
+  so.mass_damping_ratio = scene_.damping.ratio;
+  so.damping_frequency = scene_.damping.reference_hz;
+  so.damping_relative_to_rigid_motion = true;
+  so.num_threads = scene_.solver.threads;
+  so.output_every_steps = 1;  // the recorder samples sensor velocities every step
+  solver_ = std::make_unique<solver::ExplicitSolver>(mesh, std::move(sections), so);
+
+  // Adapter bottom fixed.
+  solver_->FixNodes(NodeSet(mesh, "adapter.bottom"), true, true);
+
+  // Shaft: inner-ring bore as a rigid body, rotation prescribed, translation free, load down.
+  const double omega = scene_.operation.inner_ring_speed_rad_s;
+  const double ramp = scene_.operation.ramp_s;
+  speed_ = solver::RampedSpeed(omega, ramp);
+  {
+    auto bore = mesh.curves.find("inner_ring.bore");
+    if (bore == mesh.curves.end()) throw InputError("bearing model: mesh has no 'inner_ring.bore'");
+    solver::RigidBody shaft;
+    shaft.name = "shaft";
+    shaft.nodes = bore->second.nodes;
+    shaft.angle = solver::RampedRotation(omega, ramp);
+    const double load = scene_.operation.radial_load_n;
+    const double load_ramp = options_.load_ramp_fraction * ramp;
+    shaft.force_y = [load, load_ramp](double tt) {
+      return load_ramp > 0 && tt < load_ramp ? -load * tt / load_ramp : -load;
+    };
+    shaft_body_ = solver_->AddRigidBody(std::move(shaft));
+  }
+
+  // Contact pairs.
+  contact::ContactPairOptions race;
+  race.penalty_law = contact::PenaltyLaw::kBulkModulus;
+  race.penalty_scale = options_.race_penalty_scale;
+  race.friction.static_coefficient = scene_.friction.mu_static;
+  race.friction.dynamic_coefficient = scene_.friction.mu_dynamic;
+  race.friction.decay = scene_.friction.decay_s_m;
+  race.normal_damping_ratio = options_.contact_damping_ratio;
+  contact::ContactPairOptions cage = race;
+  cage.penalty_scale = options_.cage_penalty_scale;
+  const int z = scene_.geometry.bearing.num_elements;
+  for (int j = 0; j < z; ++j) {
+    const std::string roller = "roller" + std::to_string(j);
+    const std::string surf = roller + ".surface";
+    auto make = [&](const std::string& master, const contact::ContactPairOptions& o) {
+      return std::make_unique<contact::ContactPair>(
+          contact::MakeContactPair(mesh, surf, master, bulk, t, o));
+    };
+    outer_pairs_.push_back(make("outer_ring.raceway", race));
+    inner_pairs_.push_back(make("inner_ring.raceway", race));
+    const std::string pocket = "cage.pocket" + std::to_string(j);
+    cage_pairs_.push_back(make(pocket + ".leading", cage));
+    cage_pairs_.push_back(make(pocket + ".trailing", cage));
+    roller_nodes_.push_back(NodeSet(mesh, roller + ".all"));
+  }
+  for (auto& p : outer_pairs_) solver_->AddContributor(p.get());
+  for (auto& p : inner_pairs_) solver_->AddContributor(p.get());
+  for (auto& p : cage_pairs_) solver_->AddContributor(p.get());
+
+  // Constraints last: they see every force.
+  cage_ = std::make_unique<RigidPart>("cage_rigid", NodeSet(mesh, "cage.all"));
+  solver_->AddContributor(cage_.get());
+  {
+    const std::vector<int>& seat = NodeSet(mesh, "adapter.seat");
+    auto outside = mesh.curves.find("outer_ring.outside");
+    if (outside == mesh.curves.end())
+      throw InputError("bearing model: mesh has no 'outer_ring.outside'");
+    std::vector<std::pair<int, int>> pairs;
+    const double tol = 1e-3 * scene_.mesh.contact_size_m;
+    for (int a : seat) {
+      int best = -1;
+      double best_d = std::numeric_limits<double>::infinity();
+      for (int b : outside->second.nodes) {
+        const double d = std::hypot(mesh.x[a] - mesh.x[b], mesh.y[a] - mesh.y[b]);
+        if (d < best_d) best_d = d, best = b;
+      }
+      if (!(best_d <= tol)) {
+        std::ostringstream os;
+        os << "bearing model: adapter seat node " << a << " has no coincident outer-ring node ("
+           << best_d * 1e3 << " mm away); the tie needs matching nodes";
+        throw InputError(os.str());
+      }
+      pairs.emplace_back(best, a);
+    }
+    tie_ = std::make_unique<TiedNodes>("ring_adapter_tie", std::move(pairs));
+    solver_->AddContributor(tie_.get());
+  }
+
+  // Sensors: nearest node of the outer ring or adapter.
+  std::vector<int> candidates = NodeSet(mesh, "outer_ring.all");
+  const auto& adapter = NodeSet(mesh, "adapter.all");
+  candidates.insert(candidates.end(), adapter.begin(), adapter.end());
+  for (const Sensor& sensor : scene_.sensors) {
+    int best = -1;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (int id : candidates) {
+      const double d = std::hypot(mesh.x[id] - sensor.x_m, mesh.y[id] - sensor.y_m);
+      if (d < best_d) best_d = d, best = id;
+    }
+    if (best_d > 2e-3)
+      throw InputError("sensors." + sensor.name +
+                       ": no outer-ring or adapter node within 2 mm of the sensor point");
+    for (const std::string& dir : sensor.directions)
+      channels_.push_back({sensor.name, dir == "x" ? 'x' : 'y', best, best_d});
+  }
+}
+
+double BearingModel::RollerOuterForce(int j) const {
+  return outer_pairs_[j]->Resultant().NormalMagnitude();
+}
+double BearingModel::RollerInnerForce(int j) const {
+  return inner_pairs_[j]->Resultant().NormalMagnitude();
+}
+double BearingModel::RollerCageForce(int j) const {
+  return cage_pairs_[2 * j]->Resultant().NormalMagnitude() +
+         cage_pairs_[2 * j + 1]->Resultant().NormalMagnitude();
+}
+
+BodyMotion BearingModel::RollerMotion(int j) const {
+  return FitMotion(solver_->state(), roller_nodes_[j]);
+}
+
+BodyMotion BearingModel::CageMotion() const {
+  const RigidPart::Motion m = cage_->ComputeMotion(solver_->state());
+  return {m.cx, m.cy, m.vx, m.vy, m.omega};
+}
+
+BodyMotion BearingModel::InnerRingMotion() const {
+  const solver::RigidBodyState& s = solver_->rigid_body_state(shaft_body_);
+  return {s.x, s.y, s.vx, s.vy, speed_(solver_->time())};
+}
+
+double BearingModel::InnerRingSpeed(double t) const { return speed_(t); }
+
+double BearingModel::TheoreticalCageSpeed(double t) const {
+  const BearingGeometry& b = scene_.geometry.bearing;
+  const double gamma = b.element_diameter_m * std::cos(b.contact_angle_rad) / b.pitch_diameter_m;
+  return 0.5 * speed_(t) * (1.0 - gamma);
+}
+
+std::string BearingModel::Describe() const {
+  std::ostringstream os;
+  const fe::Mesh& m = mesh_.mesh;
+  os << "model: " << m.num_elements() << " elements, " << m.num_nodes() << " nodes, "
+     << m.num_parts() << " parts; " << outer_pairs_.size() + inner_pairs_.size() + cage_pairs_.size()
+     << " contact pairs (penalty f = " << options_.race_penalty_scale << " races, "
+     << options_.cage_penalty_scale << " cage, damping " << options_.contact_damping_ratio
+     << "); cage rigid (" << cage_->nodes().size() << " nodes); ring-adapter tie "
+     << tie_->num_pairs() << " node pairs";
+  for (const SensorChannel& c : channels_)
+    os << "\nsensor " << c.sensor << " " << c.direction << ": node " << c.node << " ("
+       << c.distance_m * 1e3 << " mm from the point)";
+  return os.str();
+}
+
+}  // namespace spallkit::sim

@@ -1,0 +1,116 @@
+// The FE model of a bearing section: a Scene meshed (sim/bearing/mesher.h) and turned into an
+// explicit solver with sections, constraints, loads and contact pairs, as in the paper
+// (Dynamic Analysis of Rolling Bearings with Roller Spalling Defects Based on Explicit FE, §2-3).
+//
+// What is built (docs/BEARING_MODEL.md, "The FE model", says why):
+//  - Sections: plane strain, thickness = scene `thickness_mm` (the effective roller length l), so
+//    every force in the model is for the WHOLE section: the radial load is the scene's 10 kN
+//    itself, and contact forces compare directly with Harris–Jones roller loads for length l.
+//  - Adapter: bottom face fixed. Outer ring: tied to the adapter seat (coincident node pairs move
+//    together, TiedNodes), not in contact: the seat never opens under a downward load and a tie
+//    needs no friction to hold the ring against roller traction.
+//  - Inner ring: its bore nodes form a solver RigidBody (the shaft): rotation prescribed
+//    (speed ramped linearly from 0 to speed_rpm over ramp_s, then constant), translation free in
+//    x and y, the radial load applied towards -y and ramped over the same ramp_s (a step load on
+//    an undamped rigid-body mode would overshoot by 2x and ring for the whole run).
+//  - Rollers: free elastic bodies. Cage: the Z webs as ONE rigid body with free translation and
+//    rotation (RigidPart, sim/bearing/constraints.h), guided only by the rollers.
+//  - Contact (node-to-segment penalty, Coulomb friction from [friction]): for each roller j,
+//    roller<j>.surface (slave) against outer_ring.raceway, inner_ring.raceway, and the two walls
+//    of cage pocket j (master). 4 Z pairs. Normal contact damping (fraction of critical) damps the
+//    rigid-body bounce of rollers and inner ring, which the part-relative mass damping leaves
+//    alone.
+//  - Mass damping: [damping] ratio at reference_hz, relative to each part's rigid motion (so the
+//    spinning rings and rollers are not braked; LS-DYNA's *DAMPING_GLOBAL acts on absolute
+//    velocities and would brake them).
+// Clearance: the mesher opens P_d/4 per side (Harris's diametral clearance, docs/SCENE.md).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/bearing/constraints.h"
+#include "sim/bearing/mesher.h"
+#include "sim/bearing/scene.h"
+#include "sim/contact/contact_pair.h"
+#include "sim/solver/explicit_solver.h"
+
+namespace spallkit::sim {
+
+struct BearingModelOptions {
+  // Bulk-modulus penalty scale f (k = f K L^2 / A t) for roller-race and roller-cage pairs.
+  // Larger is stiffer (closer to Hertz/Palmgren) but shortens the contact stable step.
+  double race_penalty_scale = 0.3;
+  double cage_penalty_scale = 0.1;
+  // Normal contact damping, fraction of critical of each contact spring.
+  double contact_damping_ratio = 0.1;
+  // Load ramp time as a fraction of the scene's ramp_s (1: load and speed ramp together).
+  double load_ramp_fraction = 1.0;
+
+  bool IsValid(std::string* error) const;
+};
+
+// One accelerometer channel: a mesh node near the scene's sensor point and a direction.
+struct SensorChannel {
+  std::string sensor;     // scene sensor name
+  char direction = 'y';   // 'x' or 'y'
+  int node = -1;          // nearest outer-ring or adapter node
+  double distance_m = 0;  // from the requested point to that node
+};
+
+// Rigid-body fit of a node set (mass centre, velocity, spin), from positions x^n and
+// velocities v^(n-1/2).
+struct BodyMotion {
+  double cx = 0, cy = 0, vx = 0, vy = 0, omega = 0;
+};
+
+class BearingModel {
+ public:
+  // Meshes the scene and builds the solver. Throws InputError naming the scene key (or option)
+  // when something cannot be built.
+  explicit BearingModel(const Scene& scene, const BearingModelOptions& options = {});
+  BearingModel(const BearingModel&) = delete;
+  BearingModel& operator=(const BearingModel&) = delete;
+
+  solver::ExplicitSolver& solver() { return *solver_; }
+  const solver::ExplicitSolver& solver() const { return *solver_; }
+  const Scene& scene() const { return scene_; }
+  const BearingMesh& bearing_mesh() const { return mesh_; }
+  const BearingModelOptions& options() const { return options_; }
+  int num_rollers() const { return static_cast<int>(roller_nodes_.size()); }
+
+  // Contact normal force on roller j (N, whole section) at the last step: magnitude of the
+  // resultant of the pair's normal nodal forces. Cage: both pocket walls, summed.
+  double RollerOuterForce(int j) const;
+  double RollerInnerForce(int j) const;
+  double RollerCageForce(int j) const;
+  BodyMotion RollerMotion(int j) const;
+  const contact::ContactPair& outer_pair(int j) const { return *outer_pairs_[j]; }
+  const contact::ContactPair& inner_pair(int j) const { return *inner_pairs_[j]; }
+  BodyMotion CageMotion() const;
+  BodyMotion InnerRingMotion() const;  // the shaft rigid body (velocity at n-1/2)
+
+  // Prescribed inner-ring speed (rad/s) and the pure-rolling cage speed 1/2 w_i (1 - D/d_m) at t.
+  double InnerRingSpeed(double t) const;
+  double TheoreticalCageSpeed(double t) const;
+
+  const std::vector<SensorChannel>& sensor_channels() const { return channels_; }
+  // Parts, element/node counts, contact pairs, constraints: a few lines for logs.
+  std::string Describe() const;
+
+ private:
+  Scene scene_;
+  BearingModelOptions options_;
+  BearingMesh mesh_;
+  std::unique_ptr<solver::ExplicitSolver> solver_;
+  std::vector<std::unique_ptr<contact::ContactPair>> outer_pairs_, inner_pairs_, cage_pairs_;
+  std::unique_ptr<RigidPart> cage_;
+  std::unique_ptr<TiedNodes> tie_;
+  std::vector<std::vector<int>> roller_nodes_;
+  int shaft_body_ = -1;
+  std::vector<SensorChannel> channels_;
+  solver::TimeFunction speed_;
+};
+
+}  // namespace spallkit::sim

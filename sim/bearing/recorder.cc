@@ -1,0 +1,281 @@
+#include "sim/bearing/recorder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+
+#include "core/error.h"
+#include "core/hdf5.h"
+
+namespace spallkit::sim {
+namespace {
+
+constexpr const char* kEnergyTerms[] = {"kinetic", "internal", "hourglass", "contact",
+                                        "friction", "damping", "external", "balance_error"};
+constexpr int kNumEnergyTerms = 8;
+
+// Minimal binary (de)serialisation of the recorder state.
+void PutRaw(std::string* out, const void* p, size_t n) {
+  out->append(static_cast<const char*>(p), n);
+}
+template <typename T>
+void Put(std::string* out, const T& v) {
+  PutRaw(out, &v, sizeof v);
+}
+void PutVec(std::string* out, const std::vector<double>& v) {
+  Put<std::uint64_t>(out, v.size());
+  PutRaw(out, v.data(), v.size() * sizeof(double));
+}
+
+struct Reader {
+  const std::string& s;
+  size_t pos = 0;
+  void Raw(void* p, size_t n) {
+    if (pos + n > s.size()) throw InputError("checkpoint: recorder state is truncated");
+    std::memcpy(p, s.data() + pos, n);
+    pos += n;
+  }
+  template <typename T>
+  T Get() {
+    T v;
+    Raw(&v, sizeof v);
+    return v;
+  }
+  std::vector<double> Vec() {
+    const auto n = Get<std::uint64_t>();
+    if (n > (s.size() - pos) / sizeof(double))
+      throw InputError("checkpoint: recorder state is truncated");
+    std::vector<double> v(n);
+    Raw(v.data(), n * sizeof(double));
+    return v;
+  }
+};
+
+double Wrap(double a) {  // to (-pi, pi]
+  return a - 2.0 * std::numbers::pi * std::ceil((a - std::numbers::pi) / (2.0 * std::numbers::pi));
+}
+
+}  // namespace
+
+Recorder::Recorder(const BearingModel& model, const RecorderOptions& options)
+    : model_(model), options_(options) {
+  if (!(options_.output_rate_hz > 0) || !(options_.duration_s > 0) || options_.fine_factor < 1)
+    throw InputError("recorder: output_rate_hz and duration_s must be > 0, fine_factor >= 1");
+  num_samples_ = static_cast<int>(std::floor(options_.duration_s * options_.output_rate_hz + 1e-9)) + 1;
+  const int z = model_.num_rollers();
+  auto add = [&](const std::string& path, int cols, const std::string& units) {
+    series_.push_back({path, cols, units, false, {}});
+    series_.back().data.reserve(static_cast<size_t>(num_samples_) * cols);
+    return static_cast<int>(series_.size()) - 1;
+  };
+  idx_time_ = add("/time", 1, "s");
+  if (Wants("contact_forces")) {
+    idx_outer_ = add("/contact/roller_outer", z, "N");
+    idx_inner_ = add("/contact/roller_inner", z, "N");
+    idx_cage_force_ = add("/contact/roller_cage", z, "N");
+  }
+  if (Wants("cage")) {
+    idx_omega_ = add("/cage/omega", 1, "rad/s");
+    idx_slip_ = add("/cage/slip_ratio", 1, "1");
+  }
+  if (Wants("rollers")) {
+    idx_spin_ = add("/rollers/spin", z, "rad/s");
+    idx_orbit_ = add("/rollers/orbit_angle", z, "rad");
+  }
+  if (Wants("energy")) {
+    idx_energy_ = static_cast<int>(series_.size());
+    for (const char* term : kEnergyTerms)
+      add(std::string("/energy/") + term, 1, std::string(term) == "balance_error" ? "1" : "J");
+  }
+  accel_ = Wants("acceleration") && !model_.sensor_channels().empty();
+  if (accel_) {
+    const size_t nc = model_.sensor_channels().size();
+    fine_h_ = 1.0 / (options_.output_rate_hz * options_.fine_factor);
+    fine_needed_ = static_cast<long long>(num_samples_ - 1) * options_.fine_factor + 1 +
+                   8LL * options_.fine_factor;
+    prev_v_.assign(nc, 0.0);
+    last_fine_v_.assign(nc, 0.0);
+    last_fine_a_.assign(nc, 0.0);
+    decimators_.assign(nc, dsp::StreamingDecimator(options_.fine_factor, 8));
+    accel_out_.assign(nc, {});
+  }
+  last_orbit_.assign(z, std::numeric_limits<double>::quiet_NaN());
+}
+
+bool Recorder::Wants(const std::string& output) const {
+  return std::find(options_.outputs.begin(), options_.outputs.end(), output) !=
+         options_.outputs.end();
+}
+
+const Recorder::Series* Recorder::Find(const std::string& path) const {
+  for (const Series& s : series_)
+    if (s.path == path) return &s;
+  return nullptr;
+}
+
+void Recorder::PushFine(int c, double a) {
+  if (static_cast<int>(accel_out_[c].size()) >= num_samples_) return;
+  last_fine_a_[c] = a;
+  decimators_[c].Push(a, &accel_out_[c]);
+  if (static_cast<int>(accel_out_[c].size()) > num_samples_) accel_out_[c].resize(num_samples_);
+}
+
+void Recorder::Observe(const solver::ExplicitSolver& solver) {
+  const fe::NodalState& s = solver.state();
+  const auto& channels = model_.sensor_channels();
+  if (accel_) {
+    auto vel = [&](int c) {
+      const SensorChannel& ch = channels[c];
+      return ch.direction == 'x' ? s.vx[ch.node] : s.vy[ch.node];
+    };
+    if (solver.step() == 0) {
+      prev_t_ = 0.0;
+      for (size_t c = 0; c < channels.size(); ++c) prev_v_[c] = last_fine_v_[c] = vel(c);
+    } else {
+      const double t_mid = solver.time() - 0.5 * solver.time_step();
+      const double span = t_mid - prev_t_;
+      while (fine_index_ < fine_needed_ && (fine_index_ + 0.5) * fine_h_ <= t_mid) {
+        const double tau = (fine_index_ + 0.5) * fine_h_;
+        const double w = span > 0 ? (tau - prev_t_) / span : 1.0;
+        for (size_t c = 0; c < channels.size(); ++c) {
+          const double v = prev_v_[c] + w * (vel(c) - prev_v_[c]);
+          PushFine(static_cast<int>(c), (v - last_fine_v_[c]) / fine_h_);
+          last_fine_v_[c] = v;
+        }
+        ++fine_index_;
+      }
+      prev_t_ = t_mid;
+      for (size_t c = 0; c < channels.size(); ++c) prev_v_[c] = vel(c);
+    }
+  }
+  while (next_sample_ < num_samples_ &&
+         solver.time() >= next_sample_ / options_.output_rate_hz - 1e-15)
+    Sample(solver);
+}
+
+void Recorder::Sample(const solver::ExplicitSolver& solver) {
+  const double tk = next_sample_ / options_.output_rate_hz;
+  series_[idx_time_].data.push_back(tk);
+  const int z = model_.num_rollers();
+  if (idx_outer_ >= 0) {
+    for (int j = 0; j < z; ++j) {
+      series_[idx_outer_].data.push_back(model_.RollerOuterForce(j));
+      series_[idx_inner_].data.push_back(model_.RollerInnerForce(j));
+      series_[idx_cage_force_].data.push_back(model_.RollerCageForce(j));
+    }
+  }
+  if (idx_omega_ >= 0) {
+    const double w = model_.CageMotion().omega;
+    const double wt = model_.TheoreticalCageSpeed(solver.time());
+    series_[idx_omega_].data.push_back(w);
+    series_[idx_slip_].data.push_back(wt != 0.0 ? (w - wt) / wt
+                                                : std::numeric_limits<double>::quiet_NaN());
+  }
+  if (idx_spin_ >= 0) {
+    for (int j = 0; j < z; ++j) {
+      const BodyMotion m = model_.RollerMotion(j);
+      series_[idx_spin_].data.push_back(m.omega);
+      const double a = std::atan2(m.cy, m.cx);
+      // Unwrapped: continuous over revolutions.
+      last_orbit_[j] = std::isnan(last_orbit_[j]) ? a : last_orbit_[j] + Wrap(a - last_orbit_[j]);
+      series_[idx_orbit_].data.push_back(last_orbit_[j]);
+    }
+  }
+  if (idx_energy_ >= 0) {
+    const solver::Energies e = solver.energies();
+    const double v[kNumEnergyTerms] = {e.kinetic, e.internal, e.hourglass, e.contact,
+                                       e.friction, e.damping, e.external, e.BalanceError()};
+    for (int i = 0; i < kNumEnergyTerms; ++i) series_[idx_energy_ + i].data.push_back(v[i]);
+  }
+  ++next_sample_;
+}
+
+void Recorder::Finish() {
+  if (!accel_) return;
+  for (size_t c = 0; c < accel_out_.size(); ++c) {
+    // Hold the last fine sample for the FIR look-ahead (mirror of the start priming).
+    const double last = last_fine_a_[c];
+    int guard = 0;
+    while (static_cast<int>(accel_out_[c].size()) < num_samples_ &&
+           guard++ < 64 * options_.fine_factor * (num_samples_ + 1))
+      decimators_[c].Push(last, &accel_out_[c]);
+    if (static_cast<int>(accel_out_[c].size()) > num_samples_) accel_out_[c].resize(num_samples_);
+  }
+}
+
+void Recorder::Write(h5::File* file) const {
+  const double fs = options_.output_rate_hz;
+  for (const Series& s : series_) {
+    if (s.cols == 1)
+      file->WriteDataset(s.path, s.data);
+    else
+      file->WriteDataset2D(s.path, s.data, s.data.size() / s.cols, s.cols);
+    file->SetAttribute(s.path, "units", s.units);
+    if (s.path != "/time") file->SetAttribute(s.path, "sample_rate_hz", fs);
+  }
+  if (accel_) {
+    const auto& channels = model_.sensor_channels();
+    bool wrote_y = false, wrote_x = false;
+    for (size_t c = 0; c < channels.size(); ++c) {
+      std::vector<std::string> paths = {"/signals/" + channels[c].sensor + "_" +
+                                        channels[c].direction};
+      // The two public channels: first vertical (y) and first horizontal (x, called z as in
+      // the paper's LS-DYNA axes) sensor direction.
+      if (channels[c].direction == 'y' && !wrote_y) paths.push_back("/signals/accel_y"), wrote_y = true;
+      if (channels[c].direction == 'x' && !wrote_x) paths.push_back("/signals/accel_z"), wrote_x = true;
+      for (const std::string& p : paths) {
+        file->WriteDataset(p, accel_out_[c]);
+        file->SetAttribute(p, "units", "m/s^2");
+        file->SetAttribute(p, "sample_rate_hz", fs);
+        file->SetAttribute(p, "sensor", channels[c].sensor);
+        file->SetAttribute(p, "direction", std::string(1, channels[c].direction));
+      }
+    }
+  }
+}
+
+std::string Recorder::SaveState() const {
+  std::string out;
+  Put<std::int32_t>(&out, num_samples_);
+  Put<std::int32_t>(&out, next_sample_);
+  Put<std::uint64_t>(&out, series_.size());
+  for (const Series& s : series_) PutVec(&out, s.data);
+  Put<std::int64_t>(&out, fine_index_);
+  Put(&out, prev_t_);
+  PutVec(&out, prev_v_);
+  PutVec(&out, last_fine_v_);
+  PutVec(&out, last_fine_a_);
+  Put<std::uint64_t>(&out, decimators_.size());
+  for (size_t c = 0; c < decimators_.size(); ++c) {
+    PutVec(&out, decimators_[c].SaveState());
+    PutVec(&out, accel_out_[c]);
+  }
+  PutVec(&out, last_orbit_);
+  return out;
+}
+
+void Recorder::LoadState(const std::string& bytes) {
+  Reader r{bytes};
+  if (r.Get<std::int32_t>() != num_samples_)
+    throw InputError("checkpoint: recorder sample count differs (duration or output rate changed)");
+  next_sample_ = r.Get<std::int32_t>();
+  if (r.Get<std::uint64_t>() != series_.size())
+    throw InputError("checkpoint: recorder outputs differ from the scene's");
+  for (Series& s : series_) s.data = r.Vec();
+  fine_index_ = r.Get<std::int64_t>();
+  prev_t_ = r.Get<double>();
+  prev_v_ = r.Vec();
+  last_fine_v_ = r.Vec();
+  last_fine_a_ = r.Vec();
+  if (r.Get<std::uint64_t>() != decimators_.size())
+    throw InputError("checkpoint: recorder sensor channels differ from the scene's");
+  for (size_t c = 0; c < decimators_.size(); ++c) {
+    decimators_[c].RestoreState(r.Vec());
+    accel_out_[c] = r.Vec();
+  }
+  last_orbit_ = r.Vec();
+}
+
+}  // namespace spallkit::sim

@@ -1,0 +1,245 @@
+#include "sim/bearing/simulation.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/hdf5.h"
+#include "dsp/record.h"
+
+namespace spallkit::sim {
+namespace {
+
+constexpr char kMagic[8] = {'S', 'P', 'K', 'S', 'I', 'M', '0', '1'};
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open checkpoint");
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+void PutBlob(std::string* out, const std::string& blob) {
+  const std::uint64_t n = blob.size();
+  out->append(reinterpret_cast<const char*>(&n), sizeof n);
+  out->append(blob);
+}
+
+std::string GetBlob(const std::string& s, size_t* pos, const std::string& path) {
+  std::uint64_t n = 0;
+  if (*pos + sizeof n > s.size()) throw InputError(path + ": checkpoint is truncated");
+  std::memcpy(&n, s.data() + *pos, sizeof n);
+  *pos += sizeof n;
+  if (n > s.size() - *pos) throw InputError(path + ": checkpoint is truncated");
+  std::string blob = s.substr(*pos, n);
+  *pos += n;
+  return blob;
+}
+
+std::string TempName(const std::string& path) {
+  return path + ".solver-" + std::to_string(static_cast<long>(::getpid()));
+}
+
+}  // namespace
+
+std::string SimulationSummary::BriefReport() const {
+  std::ostringstream os;
+  os.precision(4);
+  os << (completed ? "completed" : "stopped") << " at t = " << time * 1e3 << " ms";
+  if (resumed) os << " (resumed from " << resumed_from_s * 1e3 << " ms)";
+  os << "\nsteps " << steps << " (" << steps_this_run << " this run), time step "
+     << min_time_step * 1e9 << " .. " << max_time_step * 1e9 << " ns, " << elements
+     << " elements, " << threads << " thread(s)";
+  os << "\nwall time " << wall_seconds << " s, " << ns_per_element_cycle
+     << " ns per element-cycle";
+  os << "\nenergy balance error " << energy_balance_error * 100 << " %, hourglass/internal "
+     << hourglass_to_internal * 100 << " %";
+  if (cage_omega_theory != 0.0)
+    os << "\ncage " << cage_omega_mean << " rad/s (theory " << cage_omega_theory
+       << "), slip ratio S = " << cage_slip_mean * 100 << " %";
+  return os.str();
+}
+
+Simulation::Simulation(const Scene& scene, SimulationOptions options)
+    : options_(std::move(options)) {
+  model_ = std::make_unique<BearingModel>(scene, options_.model);
+  RecorderOptions ro;
+  ro.output_rate_hz = scene.run.output_rate_hz;
+  ro.duration_s = scene.run.duration_s;
+  ro.outputs = scene.outputs;
+  ro.fine_factor = options_.fine_factor;
+  recorder_ = std::make_unique<Recorder>(*model_, ro);
+  Recorder* rec = recorder_.get();
+  model_->solver().SetOutputCallback([rec](const solver::ExplicitSolver& s) { rec->Observe(s); });
+  if (options_.checkpoint_path.empty() && !options_.output_path.empty())
+    options_.checkpoint_path = options_.output_path + ".ckpt";
+}
+
+void Simulation::SaveCheckpoint(const std::string& path) const {
+  const std::string tmp = TempName(path);
+  model_->solver().SaveCheckpoint(tmp);
+  std::string out(kMagic, sizeof kMagic);
+  PutBlob(&out, model_->scene().effective_toml);
+  std::string solver_blob;
+  try {
+    solver_blob = ReadAll(tmp);
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
+  std::remove(tmp.c_str());
+  PutBlob(&out, solver_blob);
+  PutBlob(&out, recorder_->SaveState());
+  WriteFileAtomically(path, out);
+}
+
+void Simulation::LoadCheckpoint(const std::string& path) {
+  const std::string s = ReadAll(path);
+  if (s.size() < sizeof kMagic || std::memcmp(s.data(), kMagic, sizeof kMagic) != 0)
+    throw InputError(path + ": not a spall simulate checkpoint");
+  size_t pos = sizeof kMagic;
+  if (GetBlob(s, &pos, path) != model_->scene().effective_toml)
+    throw InputError(path + ": checkpoint was written for a different scene (or --set values)");
+  const std::string solver_blob = GetBlob(s, &pos, path);
+  const std::string recorder_blob = GetBlob(s, &pos, path);
+  const std::string tmp = TempName(path);
+  WriteFileAtomically(tmp, solver_blob);
+  try {
+    model_->solver().LoadCheckpoint(tmp);
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
+  std::remove(tmp.c_str());
+  try {
+    recorder_->LoadState(recorder_blob);
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+}
+
+SimulationSummary Simulation::Run() {
+  const Scene& scene = model_->scene();
+  solver::ExplicitSolver& solver = model_->solver();
+  const double duration = scene.run.duration_s;
+  const double ci = scene.solver.checkpoint_interval_s;
+  SimulationSummary sum;
+  if ((ci > 0 || options_.resume || std::isfinite(options_.stop_after_s)) &&
+      options_.checkpoint_path.empty())
+    throw InputError("simulate: checkpoints need an output file (-o)");
+  if (options_.resume) {
+    LoadCheckpoint(options_.checkpoint_path);
+    sum.resumed = true;
+    sum.resumed_from_s = solver.time();
+  }
+  const double progress_dt =
+      options_.progress_interval_s > 0 ? options_.progress_interval_s : duration / 200.0;
+  sum.min_time_step = std::numeric_limits<double>::infinity();
+  const long first_step = solver.step();
+  double next_ckpt = ci > 0 ? (std::floor(solver.time() / ci + 1e-12) + 1.0) * ci
+                            : std::numeric_limits<double>::infinity();
+  const auto t0 = std::chrono::steady_clock::now();
+  bool stopped = false;
+  while (solver.time() < duration) {
+    const double next_progress = (std::floor(solver.time() / progress_dt) + 1.0) * progress_dt;
+    const double target = std::min({duration, next_ckpt, next_progress, options_.stop_after_s});
+    const solver::SolverSummary s = solver.Run(target);
+    if (s.steps > 0) {
+      sum.min_time_step = std::min(sum.min_time_step, s.min_time_step);
+      sum.max_time_step = std::max(sum.max_time_step, s.max_time_step);
+    }
+    sum.threads = s.threads;
+    const bool stop_now = solver.time() >= options_.stop_after_s && solver.time() < duration;
+    if (solver.time() >= next_ckpt || stop_now) {
+      if (solver.time() < duration) SaveCheckpoint(options_.checkpoint_path);
+      while (next_ckpt <= solver.time()) next_ckpt += ci;
+    }
+    if (options_.progress) {
+      SimulationProgress p;
+      p.time = solver.time(), p.duration = duration, p.steps = solver.step();
+      p.time_step = solver.time_step();
+      p.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      options_.progress(p);
+    }
+    if (stop_now) {
+      stopped = true;
+      break;
+    }
+  }
+  sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  sum.time = solver.time();
+  sum.steps = solver.step();
+  sum.steps_this_run = solver.step() - first_step;
+  if (sum.steps_this_run == 0) sum.min_time_step = sum.max_time_step = solver.time_step();
+  sum.elements = model_->bearing_mesh().mesh.num_elements();
+  sum.nodes = model_->bearing_mesh().mesh.num_nodes();
+  if (sum.steps_this_run > 0)
+    sum.ns_per_element_cycle =
+        1e9 * sum.wall_seconds / (static_cast<double>(sum.steps_this_run) * sum.elements);
+  sum.energies = solver.energies();
+  sum.energy_balance_error = sum.energies.BalanceError();
+  sum.hourglass_to_internal =
+      sum.energies.internal > 0 ? sum.energies.hourglass / sum.energies.internal : 0.0;
+  if (const Recorder::Series* w = recorder_->Find("/cage/omega")) {
+    const auto& t = recorder_->Find("/time")->data;
+    double t_from = 2.0 * scene.operation.ramp_s;
+    if (t.empty() || t.back() < t_from) t_from = t.empty() ? 0.0 : 0.5 * t.back();
+    double acc = 0.0;
+    int n = 0;
+    for (size_t i = 0; i < t.size() && i < w->data.size(); ++i)
+      if (t[i] >= t_from) acc += w->data[i], ++n;
+    if (n > 0) {
+      sum.cage_omega_mean = acc / n;
+      sum.cage_omega_theory = model_->TheoreticalCageSpeed(duration);
+      sum.cage_slip_mean = sum.cage_omega_mean / sum.cage_omega_theory - 1.0;
+    }
+  }
+  if (stopped) return sum;
+  recorder_->Finish();
+  sum.completed = true;
+  WriteOutputs(sum);
+  if (!options_.checkpoint_path.empty()) std::remove(options_.checkpoint_path.c_str());
+  return sum;
+}
+
+void Simulation::WriteOutputs(const SimulationSummary& summary) const {
+  if (!options_.output_path.empty()) {
+    AtomicFile out(options_.output_path);
+    {
+      h5::File f = h5::File::Create(out.temp_path());
+      f.SetAttribute("/", "spallkit_version", SPALLKIT_VERSION);
+      f.SetAttribute("/", "scene", model_->scene().effective_toml);
+      f.SetAttribute("/", "steps", static_cast<double>(summary.steps));
+      f.SetAttribute("/", "energy_balance_error", summary.energy_balance_error);
+      recorder_->Write(&f);
+      f.Close();
+    }
+    out.Commit();
+  }
+  if (!options_.csv_path.empty()) {
+    const auto& channels = model_->sensor_channels();
+    std::vector<std::pair<std::string, std::vector<double>>> cols;
+    cols.emplace_back("time", recorder_->Find("/time")->data);
+    bool y = false, x = false;
+    for (size_t c = 0; c < channels.size(); ++c) {
+      if (channels[c].direction == 'y' && !y)
+        cols.emplace_back("accel_y", recorder_->Acceleration(static_cast<int>(c))), y = true;
+      if (channels[c].direction == 'x' && !x)
+        cols.emplace_back("accel_z", recorder_->Acceleration(static_cast<int>(c))), x = true;
+    }
+    if (cols.size() < 2)
+      throw InputError("simulate: --csv needs the 'acceleration' output and at least one sensor");
+    dsp::WriteCsvRecord(options_.csv_path, cols);
+  }
+}
+
+}  // namespace spallkit::sim
