@@ -57,24 +57,40 @@ void BM_Kurtogram(benchmark::State& state) {
   const auto& x = Signal();
   KurtogramOptions options;
   options.max_level = static_cast<int>(state.range(0));
+  options.threads = static_cast<int>(state.range(1));
   for (auto _ : state) {
     Kurtogram k = FastKurtogram(x, kFs, options);
     benchmark::DoNotOptimize(k.best.kurtosis);
   }
 }
-BENCHMARK(BM_Kurtogram)->ArgName("max_level")->Arg(0)->Arg(6)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kurtogram)
+    ->ArgNames({"max_level", "threads"})
+    ->Args({0, 1})
+    ->Args({0, 2})
+    ->Args({6, 1})
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 // (c) kurtogram + SES of its best band, one forward FFT shared, as in `spall diagnose`.
 void BM_KurtogramThenSes(benchmark::State& state) {
   const auto& x = Signal();
+  KurtogramOptions options;
+  options.threads = static_cast<int>(state.range(0));
   for (auto _ : state) {
     EnvelopeAnalyzer analyzer(x, kFs);
-    Kurtogram k = FastKurtogram(analyzer);
+    Kurtogram k = FastKurtogram(analyzer, options);
     EnvelopeSpectrum ses = analyzer.Compute(k.best.band(), {.max_alpha_hz = 1000});
     benchmark::DoNotOptimize(ses.level.data());
   }
 }
-BENCHMARK(BM_KurtogramThenSes)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_KurtogramThenSes)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 void BM_WelchPsd(benchmark::State& state) {
   const auto& x = Signal();

@@ -90,7 +90,7 @@ EnvelopeAnalyzer::BandBins EnvelopeAnalyzer::Resolve(const Band& band, double ma
     b.alpha_bins = nb - 1;  // the squared envelope spans +-(k2-k1) bins
   }
   // |c|^2 images start at m - (nb - 1): keep them above alpha; and alpha must be below m/2.
-  b.m = FftFriendlySize(std::max({nb + b.alpha_bins, 2 * b.alpha_bins + 2, 8}));
+  b.m = FftFastSize(std::max({nb + b.alpha_bins, 2 * b.alpha_bins + 2, 8}));
   return b;
 }
 

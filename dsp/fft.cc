@@ -237,4 +237,14 @@ int FftFriendlySize(int n) {
   }
 }
 
+int FftFastSize(int n) {
+  for (int m = std::max(64, (n + 63) / 64 * 64);; m += 64) {
+    int r = m;
+    for (int p : {2, 3, 5, 7}) {
+      while (r % p == 0) r /= p;
+    }
+    if (r == 1) return m;
+  }
+}
+
 }  // namespace spallkit::dsp

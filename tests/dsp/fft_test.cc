@@ -152,4 +152,12 @@ TEST(FftFriendlySize, SmallestSevenSmoothSizeNotBelowN) {
   }
 }
 
+TEST(FftFastSize, SmallestSevenSmoothMultipleOf64) {
+  EXPECT_EQ(spallkit::dsp::FftFastSize(1), 64);
+  EXPECT_EQ(spallkit::dsp::FftFastSize(64), 64);
+  EXPECT_EQ(spallkit::dsp::FftFastSize(65), 128);
+  EXPECT_EQ(spallkit::dsp::FftFastSize(60025), 60480);  // 2^6 3^3 5 7
+  EXPECT_EQ(spallkit::dsp::FftFastSize(704), 768);      // 704 = 2^6 11 is not 7-smooth
+}
+
 }  // namespace

@@ -139,11 +139,13 @@ TEST(FastKurtogram, PicksTheBandOfAnImpulsiveResonance) {
   const auto high = FastKurtogram(x, s.fs_hz, {.min_center_hz = 15000});
   EXPECT_GE(high.best.center_hz, 15000);
   EXPECT_LT(high.best.kurtosis, 0.5 * k.best.kurtosis);
-  // Sharing the analyser's spectrum gives the identical result.
+  // Sharing the analyser's spectrum, or running on two threads, gives the identical result.
   EnvelopeAnalyzer analyzer(x, s.fs_hz);
   const auto shared = FastKurtogram(analyzer);
   EXPECT_EQ(shared.kurtosis, k.kurtosis);
   EXPECT_EQ(shared.best.center_hz, k.best.center_hz);
+  const auto threaded = FastKurtogram(analyzer, {.threads = 2});
+  EXPECT_EQ(threaded.kurtosis, k.kurtosis);
 }
 
 // Gaussian noise: every node's kurtosis is within sampling error of 0 (std ~ 2/sqrt(M)).
