@@ -17,9 +17,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kE = 210e9, kNu = 0.3, kRho = 7850.0, kThickness = 0.01;
 
-bool Wanted(const std::string& name, const std::string& filter) {
-  return filter.empty() || name.find(filter) != std::string::npos;
-}
 
 void Add(std::vector<CaseResult>* results,
          const std::string& name,
@@ -437,13 +434,13 @@ void AppendContactCases(std::vector<CaseResult>* results, const std::string& fil
   };
   for (const Case& c : cases) {
     if (std::none_of(c.names.begin(), c.names.end(), [&](const std::string& n) {
-          return Wanted(n, filter);
+          return CaseSelected(n, filter);
         }))
       continue;
     std::vector<CaseResult> mine;
     c.run(&mine);
     for (CaseResult& r : mine)
-      if (Wanted(r.name, filter)) results->push_back(std::move(r));
+      if (CaseSelected(r.name, filter)) results->push_back(std::move(r));
   }
 }
 

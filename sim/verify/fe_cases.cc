@@ -15,10 +15,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-bool Selected(const std::string& name, const std::string& filter) {
-  return filter.empty() || name.find(filter) != std::string::npos;
-}
-
 void Add(std::vector<CaseResult>* out,
          std::string name,
          std::string quantity,
@@ -296,7 +292,7 @@ void Cantilever(std::vector<CaseResult>* out, const std::string& filter) {
   const auto z = ZeroCrossings(t, u, 0.1 * period);
   double f = 0.0;
   if (z.size() >= 2) f = 1.0 / (2 * (z.back() - z.front()) / (z.size() - 1));
-  if (Selected("cantilever: first bending frequency", filter))
+  if (CaseSelected("cantilever: first bending frequency", filter))
     Add(out,
         "cantilever: first bending frequency",
         "frequency (Hz)",
@@ -304,7 +300,7 @@ void Cantilever(std::vector<CaseResult>* out, const std::string& filter) {
         f,
         0.02,
         "plane stress, L/H = 20, 120x6 one-point quads, QM = 1; Euler-Bernoulli reference");
-  if (Selected("cantilever: hourglass energy share", filter))
+  if (CaseSelected("cantilever: hourglass energy share", filter))
     Add(out,
         "cantilever: hourglass energy share",
         "peak E_hg / peak E_int",
@@ -313,7 +309,7 @@ void Cantilever(std::vector<CaseResult>* out, const std::string& filter) {
         0.05,
         "absolute; must stay below 5 %",
         true);
-  if (Selected("cantilever: energy balance", filter))
+  if (CaseSelected("cantilever: energy balance", filter))
     Add(out,
         "cantilever: energy balance",
         "worst balance error",
@@ -327,19 +323,19 @@ void Cantilever(std::vector<CaseResult>* out, const std::string& filter) {
 }  // namespace
 
 void AppendFeCases(std::vector<CaseResult>* results, const std::string& filter) {
-  if (Selected("patch: constant strain, distorted mesh", filter)) PatchTest(results);
-  if (Selected("rotation: prescribed rigid rotation, 100 revolutions", filter))
+  if (CaseSelected("patch: constant strain, distorted mesh", filter)) PatchTest(results);
+  if (CaseSelected("rotation: prescribed rigid rotation, 100 revolutions", filter))
     RigidRotation(results);
-  if (Selected("rotation: free spinning ring, centrifugal hoop stress", filter) ||
-      Selected("rotation: relative mass damping keeps the spin", filter))
+  if (CaseSelected("rotation: free spinning ring, centrifugal hoop stress", filter) ||
+      CaseSelected("rotation: relative mass damping keeps the spin", filter))
     CentrifugalRing(results);
-  if (Selected("wave: P-wave speed, plane strain bar (uniaxial strain)", filter))
+  if (CaseSelected("wave: P-wave speed, plane strain bar (uniaxial strain)", filter))
     WaveSpeed(results, fe::PlaneMode::kPlaneStrain);
-  if (Selected("wave: bar wave speed, plane stress", filter))
+  if (CaseSelected("wave: bar wave speed, plane stress", filter))
     WaveSpeed(results, fe::PlaneMode::kPlaneStress);
-  if (Selected("cantilever: first bending frequency", filter) ||
-      Selected("cantilever: hourglass energy share", filter) ||
-      Selected("cantilever: energy balance", filter))
+  if (CaseSelected("cantilever: first bending frequency", filter) ||
+      CaseSelected("cantilever: hourglass energy share", filter) ||
+      CaseSelected("cantilever: energy balance", filter))
     Cantilever(results, filter);
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace spallkit::verify {
@@ -25,6 +26,11 @@ struct CaseResult {
 void AppendFeCases(std::vector<CaseResult>* results, const std::string& filter);
 // Appends the contact cases (hertz, friction, energy, ...).
 void AppendContactCases(std::vector<CaseResult>* results, const std::string& filter);
+
+// True when a case called `name` is selected by `filter` (empty: every case).
+inline bool CaseSelected(std::string_view name, std::string_view filter) {
+  return filter.empty() || name.find(filter) != std::string_view::npos;
+}
 
 // All cases whose name contains `filter` (empty: all).
 std::vector<CaseResult> RunVerification(const std::string& filter = "");
