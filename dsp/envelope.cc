@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "dsp/prewhiten.h"
 
 namespace spallkit::dsp {
 
@@ -57,6 +58,14 @@ EnvelopeAnalyzer::EnvelopeAnalyzer(std::span<const double> x, double fs_hz) {
 }
 
 EnvelopeAnalyzer::~EnvelopeAnalyzer() = default;
+EnvelopeAnalyzer::EnvelopeAnalyzer(EnvelopeAnalyzer&&) noexcept = default;
+EnvelopeAnalyzer& EnvelopeAnalyzer::operator=(EnvelopeAnalyzer&&) noexcept = default;
+
+EnvelopeAnalyzer EnvelopeAnalyzer::Prewhitened(std::span<const double> x, double fs_hz) {
+  EnvelopeAnalyzer analyzer(x, fs_hz);
+  WhitenSpectrum(analyzer.spectrum_, analyzer.n_);
+  return analyzer;
+}
 
 EnvelopeAnalyzer::BandBins EnvelopeAnalyzer::Resolve(const Band& band, double max_alpha_hz) const {
   const double nyquist = 0.5 * fs_hz_;

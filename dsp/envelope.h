@@ -58,6 +58,12 @@ class EnvelopeAnalyzer {
   // Throws InputError if x has fewer than kMinSamples samples, a non-finite sample, or fs <= 0.
   EnvelopeAnalyzer(std::span<const double> x, double fs_hz);
   ~EnvelopeAnalyzer();
+  EnvelopeAnalyzer(EnvelopeAnalyzer&&) noexcept;
+  EnvelopeAnalyzer& operator=(EnvelopeAnalyzer&&) noexcept;
+
+  // Analyser of the cepstrum-pre-whitened record (dsp/prewhiten.h): identical, to rounding, to
+  // EnvelopeAnalyzer(CepstrumPrewhiten(x), fs_hz), with one FFT of the record instead of three.
+  static EnvelopeAnalyzer Prewhitened(std::span<const double> x, double fs_hz);
 
   double sample_rate_hz() const { return fs_hz_; }
   int size() const { return n_; }

@@ -8,6 +8,7 @@
 // mean removed, so it keeps the input's units and level.
 #pragma once
 
+#include <complex>
 #include <span>
 #include <vector>
 
@@ -15,5 +16,10 @@ namespace spallkit::dsp {
 
 // Throws InputError if x has fewer than 8 samples or a non-finite sample.
 std::vector<double> CepstrumPrewhiten(std::span<const double> x);
+
+// The same on a one-sided spectrum (n/2+1 bins of an n-point real record), in place: what
+// CepstrumPrewhiten does between its forward and inverse FFTs. The result is the spectrum of
+// CepstrumPrewhiten(x). See also EnvelopeAnalyzer::Prewhitened, which uses it to save two FFTs.
+void WhitenSpectrum(std::span<std::complex<double>> spectrum, int n);
 
 }  // namespace spallkit::dsp
