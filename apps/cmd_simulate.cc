@@ -42,10 +42,16 @@ int Run(const Opts& o) {
     so.progress = [](const sim::SimulationProgress& p) {
       const double frac = p.time / p.duration;
       const double eta = frac > 0 ? p.wall_seconds * (1.0 - frac) / frac : 0.0;
-      std::fprintf(stderr,
-                   "\r  t = %8.3f / %.3f ms  %5.1f %%  steps %ld  dt %.1f ns  wall %.0f s  eta %.0f s ",
-                   p.time * 1e3, p.duration * 1e3, 100 * frac, p.steps, p.time_step * 1e9,
-                   p.wall_seconds, eta);
+      std::fprintf(
+          stderr,
+          "\r  t = %8.3f / %.3f ms  %5.1f %%  steps %ld  dt %.1f ns  wall %.0f s  eta %.0f s ",
+          p.time * 1e3,
+          p.duration * 1e3,
+          100 * frac,
+          p.steps,
+          p.time_step * 1e9,
+          p.wall_seconds,
+          eta);
       std::fflush(stderr);
     };
   sim::Simulation simulation(scene, so);
@@ -70,10 +76,12 @@ spallkit::apps::Register reg(
       sub.add_option("scene", o->scene, "Scene file (TOML, docs/SCENE.md)")->required();
       sub.add_option("-o,--output", o->output, "HDF5 results (written atomically)")
           ->capture_default_str();
-      sub.add_option("--csv", o->csv, "Also write the accelerations as CSV (spall diagnose reads it)");
+      sub.add_option(
+          "--csv", o->csv, "Also write the accelerations as CSV (spall diagnose reads it)");
       sub.add_option("--set", o->sets, "Override a scene key, e.g. mesh.size_mm=1.0 (repeatable)");
       sub.add_flag("--resume", o->resume, "Continue from OUTPUT.ckpt");
-      sub.add_option("--stop-after-ms", o->stop_after_ms,
+      sub.add_option("--stop-after-ms",
+                     o->stop_after_ms,
                      "Stop at this simulated time after writing OUTPUT.ckpt (split long runs)");
       sub.add_flag("--quiet", o->quiet, "No model description or progress");
       return [o] { return Run(*o); };

@@ -1,5 +1,6 @@
 #include "sim/bearing/constraints.h"
 
+#include <cmath>
 #include <cstring>
 
 #include "core/error.h"
@@ -45,8 +46,34 @@ RigidPart::Motion RigidPart::ComputeMotion(const fe::NodalState& s) const {
 }
 
 void RigidPart::AddForces(fe::NodalState& s, double /*t*/, double dt) {
-  const Motion m = ComputeMotion(s);
+  if (ref_x_.empty()) {
+    // Reference shape: positions relative to the mass centre at the first step.
+    const Motion m0 = ComputeMotion(s);
+    for (int id : nodes_) ref_x_.push_back(s.x[id] - m0.cx), ref_y_.push_back(s.y[id] - m0.cy);
+  }
+  // Project positions and velocities back onto a rigid motion (best-fit rotation of the
+  // reference shape about the mass centre; momentum and angular momentum unchanged): the
+  // central-difference update keeps the set rigid only to O(dt^2) per step, and that drift
+  // would accumulate over thousands of revolutions.
+  Motion m = ComputeMotion(s);
   SPALLKIT_CHECK(m.inertia > 0.0, "rigid part '" << name_ << "' has no rotational inertia");
+  {
+    double dot = 0, cross = 0;
+    for (size_t k = 0; k < nodes_.size(); ++k) {
+      const int id = nodes_[k];
+      const double rx = s.x[id] - m.cx, ry = s.y[id] - m.cy, mi = s.mass[id];
+      dot += mi * (ref_x_[k] * rx + ref_y_[k] * ry);
+      cross += mi * (ref_x_[k] * ry - ref_y_[k] * rx);
+    }
+    const double norm = std::hypot(dot, cross);
+    const double c = dot / norm, sn = cross / norm;
+    for (size_t k = 0; k < nodes_.size(); ++k) {
+      const int id = nodes_[k];
+      const double rx = c * ref_x_[k] - sn * ref_y_[k], ry = sn * ref_x_[k] + c * ref_y_[k];
+      s.x[id] = m.cx + rx, s.y[id] = m.cy + ry;
+      s.vx[id] = m.vx - m.omega * ry, s.vy[id] = m.vy + m.omega * rx;
+    }
+  }
   double fx = 0, fy = 0, tz = 0;
   for (int id : nodes_) {
     const double rx = s.x[id] - m.cx, ry = s.y[id] - m.cy;
@@ -66,8 +93,23 @@ void RigidPart::AddForces(fe::NodalState& s, double /*t*/, double dt) {
   work_ += power * dt;
 }
 
-std::string RigidPart::SaveState() const { return PackDouble(work_); }
-void RigidPart::LoadState(const std::string& bytes) { work_ = UnpackDouble(bytes, name_); }
+std::string RigidPart::SaveState() const {
+  std::string out = PackDouble(work_);
+  for (size_t k = 0; k < ref_x_.size(); ++k) out += PackDouble(ref_x_[k]) + PackDouble(ref_y_[k]);
+  return out;
+}
+
+void RigidPart::LoadState(const std::string& bytes) {
+  const size_t n = bytes.size() / sizeof(double);
+  if (bytes.size() % sizeof(double) != 0 || (n != 1 && n != 1 + 2 * nodes_.size()))
+    throw InputError("checkpoint: bad state size for '" + name_ + "'");
+  work_ = UnpackDouble(bytes.substr(0, sizeof(double)), name_);
+  ref_x_.clear(), ref_y_.clear();
+  for (size_t k = 1; k < n; k += 2) {
+    ref_x_.push_back(UnpackDouble(bytes.substr(k * sizeof(double), sizeof(double)), name_));
+    ref_y_.push_back(UnpackDouble(bytes.substr((k + 1) * sizeof(double), sizeof(double)), name_));
+  }
+}
 
 TiedNodes::TiedNodes(std::string name, std::vector<std::pair<int, int>> pairs)
     : name_(std::move(name)), pairs_(std::move(pairs)) {

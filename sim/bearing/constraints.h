@@ -11,7 +11,9 @@
 //    r_i = x_i - c: the exact rigid acceleration (translation, angular acceleration,
 //    centripetal). Resultant and torque are unchanged, so the constraint does no work on a rigid
 //    velocity field; the work it does do (rounding, the centripetal term's O(dt^2) error) is
-//    reported as ExternalWork() so the energy balance shows it.
+//    reported as ExternalWork() so the energy balance shows it. Before that, positions and
+//    velocities are projected onto the best-fit rigid motion of the reference shape (no drift
+//    over thousands of revolutions; momentum and angular momentum unchanged).
 //
 //  - TiedNodes: pairs of coincident nodes of two parts (outer ring outside / adapter seat) that
 //    move together. Each step the pair's velocities and positions are set to their
@@ -44,9 +46,9 @@ class RigidPart : public solver::ForceContributor {
 
   // Rigid motion of the set from positions x^n and velocities v^(n-1/2) (any time).
   struct Motion {
-    double cx = 0, cy = 0;    // mass centre, m
-    double vx = 0, vy = 0;    // mass-centre velocity, m/s
-    double omega = 0;         // spin, rad/s (counter-clockwise)
+    double cx = 0, cy = 0;         // mass centre, m
+    double vx = 0, vy = 0;         // mass-centre velocity, m/s
+    double omega = 0;              // spin, rad/s (counter-clockwise)
     double mass = 0, inertia = 0;  // kg, kg m^2 about the mass centre
   };
   Motion ComputeMotion(const fe::NodalState& state) const;
@@ -55,6 +57,7 @@ class RigidPart : public solver::ForceContributor {
  private:
   std::string name_;
   std::vector<int> nodes_;
+  std::vector<double> ref_x_, ref_y_;  // reference shape about the mass centre
   double work_ = 0.0;
 };
 

@@ -12,7 +12,8 @@ namespace {
 
 const std::vector<int>& NodeSet(const fe::Mesh& mesh, const std::string& name) {
   auto it = mesh.node_sets.find(name);
-  if (it == mesh.node_sets.end()) throw InputError("bearing model: mesh has no node set '" + name + "'");
+  if (it == mesh.node_sets.end())
+    throw InputError("bearing model: mesh has no node set '" + name + "'");
   return it->second;
 }
 
@@ -221,7 +222,8 @@ std::string BearingModel::Describe() const {
   std::ostringstream os;
   const fe::Mesh& m = mesh_.mesh;
   os << "model: " << m.num_elements() << " elements, " << m.num_nodes() << " nodes, "
-     << m.num_parts() << " parts; " << outer_pairs_.size() + inner_pairs_.size() + cage_pairs_.size()
+     << m.num_parts() << " parts; "
+     << outer_pairs_.size() + inner_pairs_.size() + cage_pairs_.size()
      << " contact pairs (penalty f = " << options_.race_penalty_scale << " races, "
      << options_.cage_penalty_scale << " cage, damping " << options_.contact_damping_ratio
      << "); cage rigid (" << cage_->nodes().size() << " nodes); ring-adapter tie "

@@ -12,8 +12,14 @@
 namespace spallkit::sim {
 namespace {
 
-constexpr const char* kEnergyTerms[] = {"kinetic", "internal", "hourglass", "contact",
-                                        "friction", "damping", "external", "balance_error"};
+constexpr const char* kEnergyTerms[] = {"kinetic",
+                                        "internal",
+                                        "hourglass",
+                                        "contact",
+                                        "friction",
+                                        "damping",
+                                        "external",
+                                        "balance_error"};
 constexpr int kNumEnergyTerms = 8;
 
 // Minimal binary (de)serialisation of the recorder state.
@@ -63,7 +69,8 @@ Recorder::Recorder(const BearingModel& model, const RecorderOptions& options)
     : model_(model), options_(options) {
   if (!(options_.output_rate_hz > 0) || !(options_.duration_s > 0) || options_.fine_factor < 1)
     throw InputError("recorder: output_rate_hz and duration_s must be > 0, fine_factor >= 1");
-  num_samples_ = static_cast<int>(std::floor(options_.duration_s * options_.output_rate_hz + 1e-9)) + 1;
+  num_samples_ =
+      static_cast<int>(std::floor(options_.duration_s * options_.output_rate_hz + 1e-9)) + 1;
   const int z = model_.num_rollers();
   auto add = [&](const std::string& path, int cols, const std::string& units) {
     series_.push_back({path, cols, units, false, {}});
@@ -185,8 +192,14 @@ void Recorder::Sample(const solver::ExplicitSolver& solver) {
   }
   if (idx_energy_ >= 0) {
     const solver::Energies e = solver.energies();
-    const double v[kNumEnergyTerms] = {e.kinetic, e.internal, e.hourglass, e.contact,
-                                       e.friction, e.damping, e.external, e.BalanceError()};
+    const double v[kNumEnergyTerms] = {e.kinetic,
+                                       e.internal,
+                                       e.hourglass,
+                                       e.contact,
+                                       e.friction,
+                                       e.damping,
+                                       e.external,
+                                       e.BalanceError()};
     for (int i = 0; i < kNumEnergyTerms; ++i) series_[idx_energy_ + i].data.push_back(v[i]);
   }
   ++next_sample_;
@@ -223,8 +236,10 @@ void Recorder::Write(h5::File* file) const {
                                         channels[c].direction};
       // The two public channels: first vertical (y) and first horizontal (x, called z as in
       // the paper's LS-DYNA axes) sensor direction.
-      if (channels[c].direction == 'y' && !wrote_y) paths.push_back("/signals/accel_y"), wrote_y = true;
-      if (channels[c].direction == 'x' && !wrote_x) paths.push_back("/signals/accel_z"), wrote_x = true;
+      if (channels[c].direction == 'y' && !wrote_y)
+        paths.push_back("/signals/accel_y"), wrote_y = true;
+      if (channels[c].direction == 'x' && !wrote_x)
+        paths.push_back("/signals/accel_z"), wrote_x = true;
       for (const std::string& p : paths) {
         file->WriteDataset(p, accel_out_[c]);
         file->SetAttribute(p, "units", "m/s^2");

@@ -30,8 +30,8 @@ struct RecorderOptions {
   double output_rate_hz = 20000.0;
   double duration_s = 0.2;
   int fine_factor = 8;  // fine grid rate / output rate for the acceleration
-  std::vector<std::string> outputs = {"contact_forces", "acceleration", "cage", "rollers",
-                                      "energy"};
+  std::vector<std::string> outputs = {
+      "contact_forces", "acceleration", "cage", "rollers", "energy"};
 };
 
 class Recorder {
@@ -54,8 +54,8 @@ class Recorder {
   // Writes every series and its attributes (not the root attributes).
   void Write(h5::File* file) const;
 
-  int num_samples() const { return num_samples_; }         // planned
-  int recorded_samples() const { return next_sample_; }    // so far
+  int num_samples() const { return num_samples_; }       // planned
+  int recorded_samples() const { return next_sample_; }  // so far
   const std::vector<Series>& series() const { return series_; }
   // nullptr when that output is not recorded.
   const Series* Find(const std::string& path) const;

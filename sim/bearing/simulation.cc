@@ -57,10 +57,9 @@ std::string SimulationSummary::BriefReport() const {
   os << (completed ? "completed" : "stopped") << " at t = " << time * 1e3 << " ms";
   if (resumed) os << " (resumed from " << resumed_from_s * 1e3 << " ms)";
   os << "\nsteps " << steps << " (" << steps_this_run << " this run), time step "
-     << min_time_step * 1e9 << " .. " << max_time_step * 1e9 << " ns, " << elements
-     << " elements, " << threads << " thread(s)";
-  os << "\nwall time " << wall_seconds << " s, " << ns_per_element_cycle
-     << " ns per element-cycle";
+     << min_time_step * 1e9 << " .. " << max_time_step * 1e9 << " ns, " << elements << " elements, "
+     << threads << " thread(s)";
+  os << "\nwall time " << wall_seconds << " s, " << ns_per_element_cycle << " ns per element-cycle";
   os << "\nenergy balance error " << energy_balance_error * 100 << " %, hourglass/internal "
      << hourglass_to_internal * 100 << " %";
   if (cage_omega_theory != 0.0)

@@ -48,7 +48,7 @@ struct SimulationSummary {
   bool resumed = false;
   double resumed_from_s = 0.0;
   double time = 0.0;
-  long steps = 0;          // total, including steps before a resume
+  long steps = 0;  // total, including steps before a resume
   long steps_this_run = 0;
   double min_time_step = 0.0, max_time_step = 0.0;
   double wall_seconds = 0.0;          // this process, time loop only

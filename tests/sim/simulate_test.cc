@@ -1,0 +1,336 @@
+// spall simulate pieces: the rigid-cage and tie constraints (analytic checks), the HDF5 layout,
+// checkpoint/resume identity and the CLI.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/hdf5.h"
+#include "dsp/record.h"
+#include "sim/bearing/constraints.h"
+#include "sim/bearing/scene.h"
+#include "sim/bearing/simulation.h"
+#include "sim/fe/mesh_primitives.h"
+#include "sim/solver/explicit_solver.h"
+
+namespace spallkit::sim {
+namespace {
+
+// A couple of magnitude f |b - a| that turns with the segment a-b (follower forces).
+class FollowerCouple : public solver::ForceContributor {
+ public:
+  FollowerCouple(int a, int b, double f) : a_(a), b_(b), f_(f) {}
+  void AddForces(fe::NodalState& s, double, double) override {
+    const double dx = s.x[b_] - s.x[a_], dy = s.y[b_] - s.y[a_], l = std::hypot(dx, dy);
+    const double px = -dy / l, py = dx / l;
+    s.fx[b_] += f_ * px, s.fy[b_] += f_ * py, s.fx[a_] -= f_ * px, s.fy[a_] -= f_ * py;
+  }
+  std::string Name() const override { return "couple"; }
+
+ private:
+  int a_, b_;
+  double f_;
+};
+
+// Applies constant nodal forces (a couple or a load).
+class NodalLoad : public solver::ForceContributor {
+ public:
+  NodalLoad(std::vector<int> nodes, std::vector<double> fx, std::vector<double> fy)
+      : nodes_(std::move(nodes)), fx_(std::move(fx)), fy_(std::move(fy)) {}
+  void AddForces(fe::NodalState& s, double, double) override {
+    for (size_t k = 0; k < nodes_.size(); ++k) s.fx[nodes_[k]] += fx_[k], s.fy[nodes_[k]] += fy_[k];
+  }
+  std::string Name() const override { return "load"; }
+
+ private:
+  std::vector<int> nodes_;
+  std::vector<double> fx_, fy_;
+};
+
+fe::Section Steel(double t) {
+  fe::Section s;
+  s.material = {206e9, 0.3, 7850};
+  s.thickness = t;
+  return s;
+}
+
+TEST(RigidPartTest, FreeDiscSpinsUpUnderACoupleExactlyAsARigidBody) {
+  fe::DiscSpec d;
+  d.radius = 3e-3, d.n_core = 4, d.n_radial = 3;
+  const fe::Mesh mesh = fe::MakeDisc("disc", d);
+  solver::ExplicitSolver solver(mesh, {Steel(9e-3)});
+  // Couple: +y on the rightmost rim node, -y on the leftmost, plus a net force +x.
+  int right = 0, left = 0;
+  for (int i = 0; i < mesh.num_nodes(); ++i) {
+    if (mesh.x[i] > mesh.x[right]) right = i;
+    if (mesh.x[i] < mesh.x[left]) left = i;
+  }
+  const double f = 20.0, fx = 3.0;
+  FollowerCouple couple(left, right, f);
+  // The net force acts at the centre node (no torque as the disc turns).
+  NodalLoad load({mesh.node_sets.at("disc.center")[0]}, {fx}, {0.0});
+  RigidPart rigid("disc_rigid", mesh.node_sets.at("disc.all"));
+  solver.AddContributor(&couple);
+  solver.AddContributor(&load);
+  solver.AddContributor(&rigid);
+  const RigidPart::Motion m0 = rigid.ComputeMotion(solver.state());
+  const double torque = f * (mesh.x[right] - mesh.x[left]);
+  const double t_end = 2e-4;
+  solver.Run(t_end);
+  const double t = solver.time();
+  const RigidPart::Motion m = rigid.ComputeMotion(solver.state());
+  // omega at v^(n-1/2): T (t - dt/2) / J.
+  const double expected = torque * (t - 0.5 * solver.time_step()) / m0.inertia;
+  EXPECT_GT(std::abs(expected * t), 0.5);  // turned by more than half a radian
+  EXPECT_NEAR(m.omega, expected, 1e-4 * std::abs(expected));
+  EXPECT_NEAR(m.vx, fx * (t - 0.5 * solver.time_step()) / m0.mass, 1e-6 * std::abs(m.vx));
+  EXPECT_NEAR(m.vy, 0.0, 1e-9);
+  // Still rigid: every node at its original distance from the mass centre.
+  for (int i = 0; i < mesh.num_nodes(); ++i) {
+    const double r0 = std::hypot(mesh.x[i] - m0.cx, mesh.y[i] - m0.cy);
+    const double r = std::hypot(solver.state().x[i] - m.cx, solver.state().y[i] - m.cy);
+    EXPECT_NEAR(r, r0, 1e-8 * d.radius);  // one step's O((omega dt)^2)
+  }
+  // The constraint does no work: the kinetic energy is the work of the couple and the force.
+  const solver::Energies e = solver.energies();
+  EXPECT_LT(std::abs(rigid.ExternalWork()), 1e-6 * e.kinetic);
+  EXPECT_LT(std::abs(e.internal) + std::abs(e.hourglass), 1e-3 * e.kinetic);
+}
+
+TEST(TiedNodesTest, TwoTiedBlocksMoveExactlyLikeOneBlock) {
+  const double w = 4e-3, h = 3e-3;
+  auto block = [&](const std::string& name, double y0, int ny) {
+    fe::RectangleSpec r;
+    r.y0 = y0, r.width = w, r.height = h * ny / 4, r.nx = 4, r.ny = ny;
+    return fe::MakeRectangle(name, r);
+  };
+  // Reference: one block of 8 rows. Tied: two blocks of 4 rows with coincident interface nodes.
+  const fe::Mesh one = block("a", 0.0, 8);
+  const fe::Mesh two = fe::MergeMeshes({block("a", 0.0, 4), block("b", h, 4)});
+  auto run = [&](const fe::Mesh& mesh, bool tied, std::vector<double>* top_y) {
+    solver::ExplicitSolver solver(mesh, std::vector<fe::Section>(mesh.num_parts(), Steel(1e-2)));
+    solver.FixNodes(mesh.node_sets.at("a.bottom"), true, true);
+    const std::string top_set = tied ? "b.top" : "a.top";
+    const auto& top = mesh.node_sets.at(top_set);
+    NodalLoad load(
+        top, std::vector<double>(top.size(), 50.0), std::vector<double>(top.size(), -400.0));
+    solver.AddContributor(&load);
+    std::unique_ptr<TiedNodes> tie;
+    if (tied) {
+      std::vector<std::pair<int, int>> pairs;
+      for (int a : mesh.node_sets.at("a.top"))
+        for (int b : mesh.node_sets.at("b.bottom"))
+          if (std::hypot(mesh.x[a] - mesh.x[b], mesh.y[a] - mesh.y[b]) < 1e-12)
+            pairs.emplace_back(a, b);
+      EXPECT_EQ(pairs.size(), 5u);
+      tie = std::make_unique<TiedNodes>("tie", pairs);
+      solver.AddContributor(tie.get());
+    }
+    solver.Run(2e-5);
+    for (int id : top) top_y->push_back(solver.state().y[id] - mesh.y[id]);
+    if (tied)
+      for (int a : mesh.node_sets.at("a.top"))
+        for (int b : mesh.node_sets.at("b.bottom"))
+          if (std::hypot(mesh.x[a] - mesh.x[b], mesh.y[a] - mesh.y[b]) < 1e-12) {
+            EXPECT_EQ(solver.state().x[a], solver.state().x[b]);
+            EXPECT_EQ(solver.state().y[a], solver.state().y[b]);
+          }
+    return solver.step();
+  };
+  std::vector<double> ref, tied;
+  const long steps_ref = run(one, false, &ref);
+  const long steps_tied = run(two, true, &tied);
+  EXPECT_EQ(steps_ref, steps_tied);
+  ASSERT_EQ(ref.size(), tied.size());
+  double scale = 0.0;
+  for (double v : ref) scale = std::max(scale, std::abs(v));
+  EXPECT_GT(scale, 1e-8);
+  for (size_t i = 0; i < ref.size(); ++i) EXPECT_NEAR(tied[i], ref[i], 1e-9 * scale);
+}
+
+// A coarse healthy scene that runs in seconds: 1 mm elements, 0.9 mm along contact surfaces.
+std::vector<std::string> CoarseSets(double duration_s) {
+  return {"mesh.size_mm=1.0",
+          "mesh.contact_size_mm=0.9",
+          "mesh.adapter_size_mm=2.0",
+          "defects=[]",
+          "operation.ramp_s=0.0002",
+          "run.output_rate_hz=50000",
+          "run.duration_s=" + std::to_string(duration_s)};
+}
+
+std::string Scenes() { return std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/"; }
+
+std::string TempPath(const std::string& name) {
+  return ::testing::TempDir() + "spallkit_simulate_" + name;
+}
+
+TEST(SimulateTest, WritesTheDocumentedHdf5Layout) {
+  const Scene scene = LoadScene(Scenes() + "paper-verification.toml", CoarseSets(2e-4));
+  SimulationOptions o;
+  o.output_path = TempPath("layout.h5");
+  o.csv_path = TempPath("layout.csv");
+  Simulation sim(scene, o);
+  const SimulationSummary s = sim.Run();
+  ASSERT_TRUE(s.completed);
+  EXPECT_GT(s.steps, 1000);
+  EXPECT_LT(s.energy_balance_error, 0.01);
+
+  h5::File f = h5::File::OpenReadOnly(o.output_path);
+  EXPECT_EQ(f.ReadStringAttribute("/", "scene").value(), scene.effective_toml);
+  EXPECT_EQ(f.ReadStringAttribute("/", "spallkit_version").value(), SPALLKIT_VERSION);
+  const int n = 11;  // 0.2 ms at 50 kHz, both ends
+  const int z = 13;
+  std::vector<size_t> dims;
+  EXPECT_EQ(f.ReadDataset("/time", &dims).size(), static_cast<size_t>(n));
+  for (const char* p : {"/signals/accel_y",
+                        "/signals/accel_z",
+                        "/cage/omega",
+                        "/cage/slip_ratio",
+                        "/energy/kinetic",
+                        "/energy/internal",
+                        "/energy/hourglass",
+                        "/energy/contact",
+                        "/energy/friction",
+                        "/energy/damping",
+                        "/energy/external",
+                        "/energy/balance_error"}) {
+    SCOPED_TRACE(p);
+    EXPECT_EQ(f.DatasetDims(p), std::vector<size_t>{static_cast<size_t>(n)});
+    EXPECT_TRUE(f.ReadStringAttribute(p, "units").has_value());
+    EXPECT_EQ(f.ReadDoubleAttribute(p, "sample_rate_hz").value(), 50000.0);
+  }
+  for (const char* p : {"/contact/roller_outer",
+                        "/contact/roller_inner",
+                        "/contact/roller_cage",
+                        "/rollers/spin",
+                        "/rollers/orbit_angle"}) {
+    SCOPED_TRACE(p);
+    EXPECT_EQ(f.DatasetDims(p),
+              (std::vector<size_t>{static_cast<size_t>(n), static_cast<size_t>(z)}));
+  }
+  EXPECT_EQ(f.ReadStringAttribute("/contact/roller_outer", "units").value(), "N");
+  EXPECT_EQ(f.ReadStringAttribute("/signals/accel_y", "units").value(), "m/s^2");
+  // Orbit angles start at the mesher's roller angles: roller 0 on the load line (-pi/2).
+  const auto orbit = f.ReadDataset("/rollers/orbit_angle");
+  EXPECT_NEAR(orbit[0], -M_PI / 2, 1e-9);
+  EXPECT_NEAR(orbit[1], -M_PI / 2 + 2 * M_PI / z, 1e-9);
+  // The CSV carries the same acceleration for spall diagnose.
+  const dsp::Record csv = dsp::ReadCsvRecord(o.csv_path);
+  EXPECT_EQ(csv.samples, f.ReadDataset("/signals/accel_y"));
+  EXPECT_NEAR(csv.sample_rate_hz, 50000.0, 1e-6);
+  std::remove(o.output_path.c_str());
+  std::remove(o.csv_path.c_str());
+}
+
+TEST(SimulateTest, OutputsNotAskedForAreNotWritten) {
+  std::vector<std::string> sets = CoarseSets(5e-5);
+  sets.push_back("run.outputs=[\"cage\"]");
+  const Scene scene = LoadScene(Scenes() + "paper-verification.toml", sets);
+  SimulationOptions o;
+  o.output_path = TempPath("partial.h5");
+  Simulation(scene, o).Run();
+  h5::File f = h5::File::OpenReadOnly(o.output_path);
+  EXPECT_EQ(f.ListDatasets(),
+            (std::vector<std::string>{"/cage/omega", "/cage/slip_ratio", "/time"}));
+  std::remove(o.output_path.c_str());
+}
+
+TEST(SimulateTest, ResumedRunIsBitIdenticalToAnUninterruptedOne) {
+  std::vector<std::string> sets = CoarseSets(3e-4);
+  sets.push_back("solver.checkpoint_interval_s=0.0001");
+  const Scene scene = LoadScene(Scenes() + "paper-verification.toml", sets);
+  SimulationOptions a;
+  a.output_path = TempPath("straight.h5");
+  const SimulationSummary sa = Simulation(scene, a).Run();
+  ASSERT_TRUE(sa.completed);
+
+  SimulationOptions b;
+  b.output_path = TempPath("resumed.h5");
+  b.stop_after_s = 1.5e-4;  // between checkpoints: the stop writes its own
+  {
+    const SimulationSummary s1 = Simulation(scene, b).Run();
+    EXPECT_FALSE(s1.completed);
+    std::ifstream ckpt(b.output_path + ".ckpt");
+    EXPECT_TRUE(ckpt.good());
+  }
+  b.stop_after_s = std::numeric_limits<double>::infinity();
+  b.resume = true;
+  const SimulationSummary s2 = Simulation(scene, b).Run();
+  ASSERT_TRUE(s2.completed);
+  EXPECT_TRUE(s2.resumed);
+  EXPECT_EQ(s2.steps, sa.steps);
+
+  h5::File fa = h5::File::OpenReadOnly(a.output_path), fb = h5::File::OpenReadOnly(b.output_path);
+  const auto names = fa.ListDatasets();
+  EXPECT_EQ(names, fb.ListDatasets());
+  EXPECT_GE(names.size(), 17u);
+  for (const std::string& p : names) {
+    SCOPED_TRACE(p);
+    const auto va = fa.ReadDataset(p), vb = fb.ReadDataset(p);
+    ASSERT_EQ(va.size(), vb.size());
+    for (size_t i = 0; i < va.size(); ++i)
+      if (!(std::isnan(va[i]) && std::isnan(vb[i]))) {
+        ASSERT_EQ(va[i], vb[i]) << "sample " << i;
+      }
+  }
+  // A checkpoint of another scene is refused.
+  std::vector<std::string> other = sets;
+  other.push_back("operation.radial_load_n=5000");
+  SimulationOptions c = b;
+  {
+    SimulationOptions stop = b;
+    stop.resume = false, stop.stop_after_s = 1e-4;
+    Simulation(scene, stop).Run();
+  }
+  const Scene other_scene = LoadScene(Scenes() + "paper-verification.toml", other);
+  EXPECT_THROW(Simulation(other_scene, c).Run(), spallkit::InputError);
+  std::remove((b.output_path + ".ckpt").c_str());
+  std::remove(a.output_path.c_str());
+  std::remove(b.output_path.c_str());
+}
+
+std::string RunCli(const std::string& args, int* code) {
+  const std::string out = TempPath("cli.txt");
+  const std::string cmd = std::string(SPALLKIT_SPALL_EXE) + " " + args + " > " + out + " 2>&1";
+  const int rc = std::system(cmd.c_str());
+  *code = WEXITSTATUS(rc);
+  std::ifstream in(out);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(SimulateCliTest, PrintsTheSummaryAndWritesFiles) {
+  std::string sets;
+  for (const std::string& s : CoarseSets(1e-4)) sets += " --set '" + s + "'";
+  int code = -1;
+  const std::string h5 = TempPath("cli.h5"), csv = TempPath("cli.csv");
+  const std::string out = RunCli(
+      "simulate " + Scenes() + "paper-verification.toml -o " + h5 + " --csv " + csv + sets, &code);
+  EXPECT_EQ(code, 0) << out;
+  for (const char* key : {"steps",
+                          "time step",
+                          "wall time",
+                          "ns per element-cycle",
+                          "energy balance error",
+                          "hourglass/internal"})
+    EXPECT_NE(out.find(key), std::string::npos) << key << "\n" << out;
+  EXPECT_NO_THROW(dsp::ReadHdf5Record(h5));
+  EXPECT_NO_THROW(dsp::ReadCsvRecord(csv));
+  std::remove(h5.c_str());
+  std::remove(csv.c_str());
+
+  const std::string bad = RunCli(
+      "simulate " + Scenes() + "paper-verification.toml -o " + h5 + " --set mesh.sise_mm=1", &code);
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(bad.find("spall: error:"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("sise_mm"), std::string::npos) << bad;
+}
+
+}  // namespace
+}  // namespace spallkit::sim
