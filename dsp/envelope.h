@@ -5,8 +5,8 @@
 //   1. X = FFT of the whole record (mean removed), done once per record;
 //   2. keep the one-sided bins k1..k2 of [f1, f2], doubled (the analytic signal's spectrum): an
 //      ideal band-pass that can sit right next to strong discrete lines;
-//   3. shift bin k1 to DC and inverse-transform at a small size M >= (k2-k1+1) + alpha bins, M an
-//      FFTW-friendly size: this is the complex envelope decimated to fs' = M * fs / N with no
+//   3. shift bin k1 to DC and inverse-transform at a small size M >= (k2-k1+1) + alpha bins
+//      (FftFastSize): this is the complex envelope decimated to fs' = M * fs / N with no
 //      aliasing of |c|^2 below max_alpha (|c|^2 spans +-(k2-k1) bins, so its images start at
 //      M-(k2-k1) > alpha bins). The shift changes only the phase of c, not |c|;
 //   4. SE = |c|^2, mean removed, real FFT of size M; SES(alpha) = |FFT(SE - mean)| / M, which

@@ -16,7 +16,7 @@
 // bank keeps the same factor-2 oversampling (rate fs/2^k for bands fs/2^(k+1) wide); (3) it
 // reuses the record's FFT that the SES needs anyway, and each row costs about one record-length
 // complex FFT in small cache-resident pieces. The node transforms run in single precision (fftwf,
-// scaled to the record's RMS bin first): the kurtosis comes out within ~1e-8 relative of the
+// scaled to the record's RMS bin first): the kurtosis comes out within ~1e-7 relative of the
 // double-precision value, for about 30 % less time than double.
 // The record is treated as periodic (as any FFT method does, and as the filter bank's start-up
 // transient does): a jump between its last and first samples acts as one impulse. It matters only
