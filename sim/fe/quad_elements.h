@@ -36,6 +36,8 @@ class QuadElements {
   // Elements per block (and per energy accumulator). Fixed, so that sums do not depend on
   // the thread count.
   static constexpr int kBlockSize = 256;
+  // Nodes per gather chunk (the unit of OpenMP work in GatherForces / ComputeForces).
+  static constexpr int kGatherChunk = 1024;
 
   // One Section per mesh part. Throws InputError for an invalid mesh or section.
   QuadElements(const Mesh& mesh, std::vector<Section> sections);
@@ -58,6 +60,10 @@ class QuadElements {
   // smallest element stable step (without safety factor; reduced for stiffness damping).
   // Throws NumericalError if an element inverts. Runs on `threads` OpenMP threads (0: default).
   double ComputeCornerForces(const NodalState& state, double dt_prev, int threads);
+
+  // ComputeCornerForces followed by GatherForces(state, threads) in ONE OpenMP parallel region
+  // (one fork/join per step instead of two; identical results).
+  double ComputeForces(NodalState* state, double dt_prev, int threads);
 
   // state->fx/fy = - sum of the corner forces of each node (overwrites; fixed order).
   void GatherForces(NodalState* state, int threads) const;
@@ -90,9 +96,14 @@ class QuadElements {
   struct Block {
     int begin, end, part;
   };
+  // Returns the block's largest (c / L_e)^2 (not yet reduced for stiffness damping), or
+  // +infinity if an element is inverted.
   template <bool kStiffDamp>
   double BlockKernel(
       const Block& b, const NodalState& s, double h, double* e_int, double* e_hg, double* e_damp);
+  void RunBlock(int k, const NodalState& s, double dt_prev);
+  // Smallest stable step from the per-block results; throws NumericalError on inversion.
+  double ReduceStableStep(const NodalState& s) const;
 
   int num_nodes_ = 0;
   std::vector<Section> sections_;
@@ -104,7 +115,7 @@ class QuadElements {
   std::vector<double> fcx_, fcy_;                          // corner forces, [corner * ne + e]
   std::vector<int> node_ptr_, node_slots_;                 // CSR node -> corner slots, ascending
   std::vector<double> block_int_, block_hg_, block_damp_;  // cumulative energies per block
-  std::vector<double> block_inv_dt_, block_min_area_;      // per-pass scratch
+  std::vector<double> block_inv_dt_, block_min_area_;      // per-pass scratch ((c/L_e)^2)
   double beta_ = 0.0;
 };
 
