@@ -252,7 +252,7 @@ double QuadElements::BlockKernel(
   return min_area > 0.0 ? inv_dt2_max : std::numeric_limits<double>::infinity();
 }
 
-double QuadElements::ReduceStableStep(const NodalState& s) const {
+double QuadElements::StableStep(const NodalState& s) const {
   double inv_dt2 = 0.0;
   for (double v : block_inv_dt_) inv_dt2 = std::max(inv_dt2, v);
   if (!std::isfinite(inv_dt2)) {
@@ -279,7 +279,7 @@ double QuadElements::ReduceStableStep(const NodalState& s) const {
   return 1.0 / inv_dt;
 }
 
-void QuadElements::RunBlock(int k, const NodalState& s, double dt_prev) {
+void QuadElements::ComputeBlock(int k, const NodalState& s, double dt_prev) {
   block_inv_dt_[k] =
       beta_ > 0.0 ? BlockKernel<true>(
                         blocks_[k], s, dt_prev, &block_int_[k], &block_hg_[k], &block_damp_[k])
@@ -290,8 +290,8 @@ void QuadElements::RunBlock(int k, const NodalState& s, double dt_prev) {
 double QuadElements::ComputeCornerForces(const NodalState& s, double dt_prev, int threads) {
   const int nb = static_cast<int>(blocks_.size());
 #pragma omp parallel for schedule(static) num_threads(threads > 0 ? threads : omp_get_max_threads())
-  for (int k = 0; k < nb; ++k) RunBlock(k, s, dt_prev);
-  return ReduceStableStep(s);
+  for (int k = 0; k < nb; ++k) ComputeBlock(k, s, dt_prev);
+  return StableStep(s);
 }
 
 double QuadElements::ComputeForces(NodalState* s, double dt_prev, int threads) {
@@ -300,13 +300,13 @@ double QuadElements::ComputeForces(NodalState* s, double dt_prev, int threads) {
 #pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
   {
 #pragma omp for schedule(static)
-    for (int k = 0; k < nb; ++k) RunBlock(k, *s, dt_prev);
+    for (int k = 0; k < nb; ++k) ComputeBlock(k, *s, dt_prev);
       // (implicit barrier: every corner force is written before any node gathers)
 #pragma omp for schedule(static) nowait
     for (int c = 0; c < nc; ++c)
       GatherForces(s, c * kGatherChunk, std::min(num_nodes_, (c + 1) * kGatherChunk));
   }
-  return ReduceStableStep(*s);
+  return StableStep(*s);
 }
 
 void QuadElements::GatherForces(NodalState* s, int begin, int end) const {

@@ -65,6 +65,14 @@ class QuadElements {
   // (one fork/join per step instead of two; identical results).
   double ComputeForces(NodalState* state, double dt_prev, int threads);
 
+  // The pieces of ComputeCornerForces, for callers that run their own OpenMP region (the solver
+  // fuses its node loops into the element pass): ComputeBlock(k, ...) once for every k in
+  // [0, num_blocks()), in any order on any thread, then StableStep(state) (serial; throws
+  // NumericalError if an element inverted).
+  int num_blocks() const { return static_cast<int>(blocks_.size()); }
+  void ComputeBlock(int k, const NodalState& state, double dt_prev);
+  double StableStep(const NodalState& state) const;
+
   // state->fx/fy = - sum of the corner forces of each node (overwrites; fixed order).
   void GatherForces(NodalState* state, int threads) const;
   // Same for nodes [begin, end) only, for callers that fuse the gather with their own node loop.
@@ -101,9 +109,6 @@ class QuadElements {
   template <bool kStiffDamp>
   double BlockKernel(
       const Block& b, const NodalState& s, double h, double* e_int, double* e_hg, double* e_damp);
-  void RunBlock(int k, const NodalState& s, double dt_prev);
-  // Smallest stable step from the per-block results; throws NumericalError on inversion.
-  double ReduceStableStep(const NodalState& s) const;
 
   int num_nodes_ = 0;
   std::vector<Section> sections_;

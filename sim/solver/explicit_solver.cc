@@ -198,7 +198,7 @@ void ExplicitSolver::SetRigidVelocity(
 }
 
 void ExplicitSolver::Initialize() {
-  // Default: OpenMP's thread count, but one thread for small models, where the three
+  // Default: OpenMP's thread count, but one thread for small models, where the two
   // fork/join barriers per step cost more than the work (and much more on a busy machine).
   threads_ = options_.num_threads > 0 ? options_.num_threads
              : elements_.num_elements() < kMinElementsPerThread
@@ -211,6 +211,9 @@ void ExplicitSolver::Initialize() {
                                     (kPi * options_.stiffness_damping_frequency));
   for (auto* v : {&old_vx_, &old_vy_, &old_x_, &old_y_})
     v->assign(state_.size(), 0.0);  // constrained nodes only
+  // Here rather than in the constructor: state().mass may be edited before the first step.
+  inv_mass_.resize(state_.size());
+  for (size_t i = 0; i < state_.size(); ++i) inv_mass_[i] = 1.0 / state_.mass[i];
   // Rigid bodies start with the momentum-weighted velocity of their nodes.
   for (size_t b = 0; b < rigid_bodies_.size(); ++b) {
     double m = 0, px = 0, py = 0;
@@ -233,22 +236,23 @@ void ExplicitSolver::Initialize() {
   last_output_step_ = 0;
 }
 
-void ExplicitSolver::ComputePartRigidMotion() {
+void ExplicitSolver::RigidMotionSums(int c) {
+  const int nn = static_cast<int>(state_.size()), np = elements_.num_parts();
+  double* sums = &chunk_sums_[static_cast<size_t>(c) * np * kRigidSums];
+  std::fill(sums, sums + np * kRigidSums, 0.0);
+  const int end = std::min(nn, (c + 1) * kNodeChunk);
+  for (int i = c * kNodeChunk; i < end; ++i) {
+    double* s = sums + node_part_[i] * kRigidSums;
+    const double m = state_.mass[i], x = state_.x[i], y = state_.y[i], vx = state_.vx[i],
+                 vy = state_.vy[i];
+    s[0] += m, s[1] += m * x, s[2] += m * y, s[3] += m * vx, s[4] += m * vy;
+    s[5] += m * (x * vy - y * vx), s[6] += m * (x * x + y * y);
+  }
+}
+
+void ExplicitSolver::ReducePartRigidMotion() {
   const int nn = static_cast<int>(state_.size()), np = elements_.num_parts();
   const int nchunks = (nn + kNodeChunk - 1) / kNodeChunk;
-#pragma omp parallel for schedule(static) num_threads(threads_)
-  for (int c = 0; c < nchunks; ++c) {
-    double* sums = &chunk_sums_[static_cast<size_t>(c) * np * kRigidSums];
-    std::fill(sums, sums + np * kRigidSums, 0.0);
-    const int end = std::min(nn, (c + 1) * kNodeChunk);
-    for (int i = c * kNodeChunk; i < end; ++i) {
-      double* s = sums + node_part_[i] * kRigidSums;
-      const double m = state_.mass[i], x = state_.x[i], y = state_.y[i], vx = state_.vx[i],
-                   vy = state_.vy[i];
-      s[0] += m, s[1] += m * x, s[2] += m * y, s[3] += m * vx, s[4] += m * vy;
-      s[5] += m * (x * vy - y * vx), s[6] += m * (x * x + y * y);
-    }
-  }
   for (int p = 0; p < np; ++p) {
     double t[kRigidSums] = {0, 0, 0, 0, 0, 0, 0};
     for (int c = 0; c < nchunks; ++c)
@@ -284,7 +288,37 @@ void ExplicitSolver::PartRigidMotion(int part, double* vx, double* vy, double* o
 void ExplicitSolver::Step() {
   if (!initialized_) Initialize();
   const double h = dt_prev_;
-  double dt = options_.time_step_scale * elements_.ComputeCornerForces(state_, h, threads_);
+  // Element pass. With contributors the nodal forces must be complete before they run (they
+  // may read them), so the gather is done in the element pass's parallel region; without, it is
+  // fused into the nodal update below. The rigid-motion sums of relative mass damping run in the
+  // same region. Either way: two parallel regions (sync points) per step, the minimum for a
+  // global stable step.
+  const bool fuse_gather = contributors_.empty();
+  const bool damp = mass_damping_ > 0.0;
+  const bool relative = damp && options_.damping_relative_to_rigid_motion;
+  const int nn = static_cast<int>(state_.size());
+  const int nchunks = (nn + kNodeChunk - 1) / kNodeChunk;
+  const int nblocks = elements_.num_blocks();
+  const int ngather = (nn + fe::QuadElements::kGatherChunk - 1) / fe::QuadElements::kGatherChunk;
+#pragma omp parallel num_threads(threads_)
+  {
+#pragma omp for schedule(static) nowait
+    for (int k = 0; k < nblocks; ++k) elements_.ComputeBlock(k, state_, h);
+    if (relative) {
+      // Rigid motion of the parts from x^n, v^(n-1/2) (read-only here, so no barrier needed).
+#pragma omp for schedule(static) nowait
+      for (int c = 0; c < nchunks; ++c) RigidMotionSums(c);
+    }
+    if (!fuse_gather) {
+#pragma omp barrier
+#pragma omp for schedule(static) nowait
+      for (int c = 0; c < ngather; ++c)
+        elements_.GatherForces(&state_,
+                               c * fe::QuadElements::kGatherChunk,
+                               std::min(nn, (c + 1) * fe::QuadElements::kGatherChunk));
+    }
+  }
+  double dt = options_.time_step_scale * elements_.StableStep(state_);
   dt = std::min(dt, options_.max_time_step);
   for (ForceContributor* c : contributors_) dt = std::min(dt, c->StableTimeStep(state_));
   if (!(dt > 0.0) || !std::isfinite(dt)) {
@@ -292,12 +326,8 @@ void ExplicitSolver::Step() {
     os << "solver: invalid time step " << dt << " at t = " << time_ << " s (step " << step_ << ")";
     throw NumericalError(os.str());
   }
-  elements_.GatherForces(&state_, threads_);
   for (ForceContributor* c : contributors_) c->AddForces(state_, time_, dt);
-
-  const bool damp = mass_damping_ > 0.0;
-  const bool relative = damp && options_.damping_relative_to_rigid_motion;
-  if (relative) ComputePartRigidMotion();
+  if (relative) ReducePartRigidMotion();
 
   // Remember v^(n-1/2) of constrained nodes (reaction work).
   auto remember = [&](int id) {
@@ -310,14 +340,13 @@ void ExplicitSolver::Step() {
     for (int id : c.nodes) remember(id);
 
   const double dt_avg = 0.5 * (h + dt);
-  const int nn = static_cast<int>(state_.size());
-  const int nchunks = (nn + kNodeChunk - 1) / kNodeChunk;
   const double ad = mass_damping_ * dt_avg * 0.5;
   const double c_old = 1.0 - ad, c_inv = 1.0 / (1.0 + ad);
   double* chunk_work = chunk_sums_.data();  // reuse scratch: one value per chunk
 #pragma omp parallel for schedule(static) num_threads(threads_)
   for (int c = 0; c < nchunks; ++c) {
-    const int end = std::min(nn, (c + 1) * kNodeChunk);
+    const int begin = c * kNodeChunk, end = std::min(nn, (c + 1) * kNodeChunk);
+    if (fuse_gather) elements_.GatherForces(&state_, begin, end);  // still in cache below
     double* __restrict x = state_.x.data();
     double* __restrict y = state_.y.data();
     double* __restrict vx = state_.vx.data();
@@ -325,23 +354,24 @@ void ExplicitSolver::Step() {
     const double* __restrict fx = state_.fx.data();
     const double* __restrict fy = state_.fy.data();
     const double* __restrict m = state_.mass.data();
+    const double* __restrict inv_m = inv_mass_.data();
     double work = 0.0;
     if (!damp) {
 #pragma omp simd
-      for (int i = c * kNodeChunk; i < end; ++i) {
-        const double s = dt_avg / m[i];
+      for (int i = begin; i < end; ++i) {
+        const double s = dt_avg * inv_m[i];
         vx[i] += s * fx[i], vy[i] += s * fy[i];
         x[i] += dt * vx[i], y[i] += dt * vy[i];
       }
     } else {
-      for (int i = c * kNodeChunk; i < end; ++i) {
+      for (int i = begin; i < end; ++i) {
         double rvx = 0.0, rvy = 0.0;
         if (relative) {
           const double* r = &part_rigid_[5 * static_cast<size_t>(node_part_[i])];
           rvx = r[0] - r[2] * (y[i] - r[4]);
           rvy = r[1] + r[2] * (x[i] - r[3]);
         }
-        const double s = dt_avg / m[i];
+        const double s = dt_avg * inv_m[i];
         const double ux0 = vx[i] - rvx, uy0 = vy[i] - rvy;
         const double ux1 = (c_old * ux0 + s * fx[i]) * c_inv,
                      uy1 = (c_old * uy0 + s * fy[i]) * c_inv;

@@ -175,7 +175,10 @@ class ExplicitSolver {
 
  private:
   void Initialize();
-  void ComputePartRigidMotion();
+  // Per-part rigid motion in two pieces: sums over node chunk c (run inside the element pass's
+  // parallel region), then the fixed-order reduction over chunks.
+  void RigidMotionSums(int c);
+  void ReducePartRigidMotion();
   void ApplyConstraints(double dt, double dt_avg, double t_half, double t_next);
   void MaybeOutput(bool force);
 
@@ -191,6 +194,7 @@ class ExplicitSolver {
   // Node -> part (first element's part) and per-part rigid motion, in fixed node chunks.
   std::vector<int> node_part_;
   std::vector<char> constrained_;   // node is driven by a constraint (no damping)
+  std::vector<double> inv_mass_;    // 1 / lumped mass (no division in the nodal update)
   std::vector<double> part_rigid_;  // per part: vx, vy, omega, cx, cy
   std::vector<double> chunk_sums_;  // per chunk x per part x 7 sums (scratch)
   std::vector<double> old_vx_, old_vy_, old_x_, old_y_;  // v^(n-1/2), x^n of constrained nodes
