@@ -1,6 +1,8 @@
 // The whole `spall diagnose` analysis (kurtogram + candidate-band SES + fault-band detection; no
-// I/O, no plots) on 10 s at 48 kHz of a synthetic outer-race record (6205 at 1797 rpm).
-// Run: build-diagnose/bench/diagnose_benchmark --benchmark_min_time=2
+// I/O, no plots) on 10 s at 48 kHz of a synthetic outer-race record (6205 at 1797 rpm), and its
+// per-band stages (one candidate band's SES, robust floor, and the four family combs) so that a
+// change can be attributed.
+// Run: build-<you>/bench/diagnose_benchmark --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
 #include "core/bearing.h"
@@ -9,30 +11,37 @@
 
 namespace {
 
-spallkit::dsp::Record MakeRecord() {
-  spallkit::testing::FaultSignalSpec s;
-  s.fs_hz = 48000;
-  s.duration_s = 10.0;
-  s.rate_hz = 107.36 * 0.99;
-  s.resonance_hz = 12000;
-  s.amplitude = 3.0;
-  s.noise_rms = 0.4;
-  s.shaft_hz = 29.95;
-  s.shaft_amplitude = 0.5;
-  s.mains_amplitude = 0.2;
-  spallkit::dsp::Record r;
-  r.samples = spallkit::testing::MakeFaultSignal(s);
-  r.sample_rate_hz = s.fs_hz;
+using namespace spallkit::dsp;
+
+const Record& TheRecord() {
+  static const Record r = [] {
+    spallkit::testing::FaultSignalSpec s;
+    s.fs_hz = 48000;
+    s.duration_s = 10.0;
+    s.rate_hz = 107.36 * 0.99;
+    s.resonance_hz = 12000;
+    s.amplitude = 3.0;
+    s.noise_rms = 0.4;
+    s.shaft_hz = 29.95;
+    s.shaft_amplitude = 0.5;
+    s.mains_amplitude = 0.2;
+    Record rec;
+    rec.samples = spallkit::testing::MakeFaultSignal(s);
+    rec.sample_rate_hz = s.fs_hz;
+    return rec;
+  }();
   return r;
 }
 
+constexpr double kShaftHz = 1797 / 60.0;
+
 void BM_Diagnose10s48k(benchmark::State& state) {
-  const auto record = MakeRecord();
+  const auto& record = TheRecord();
   const auto bearing = spallkit::CatalogBearing("6205");
   std::string verdict;
   int bands = 0;
   for (auto _ : state) {
-    const auto d = spallkit::dsp::Diagnose(record, bearing, 1797 / 60.0);
+    const auto d = Diagnose(record, bearing, kShaftHz);
     verdict = d.verdict;
     bands = d.candidate_bands;
     benchmark::DoNotOptimize(d.faults.data());
@@ -40,6 +49,56 @@ void BM_Diagnose10s48k(benchmark::State& state) {
   state.SetLabel(verdict + ", " + std::to_string(bands) + " candidate bands");
 }
 BENCHMARK(BM_Diagnose10s48k)->Unit(benchmark::kMillisecond);
+
+// One candidate band as Diagnose sees it: 9-12 kHz (3 kHz wide), SES up to the highest fault line
+// plus half a floor window (~920 Hz, ~9,200 bins).
+struct BandFixture {
+  EnvelopeAnalyzer analyzer{TheRecord().samples, TheRecord().sample_rate_hz};
+  Band band{9000, 12000};
+  double max_alpha_hz = 920.0;
+  std::vector<FaultFamily> families =
+      MakeFaultFamilies(ComputeFrequencies(spallkit::CatalogBearing("6205"), kShaftHz));
+};
+
+void BM_BandSes(benchmark::State& state) {
+  BandFixture f;
+  for (auto _ : state) {
+    const EnvelopeSpectrum ses = f.analyzer.Compute(f.band, {.max_alpha_hz = f.max_alpha_hz});
+    benchmark::DoNotOptimize(ses.level.data());
+  }
+}
+BENCHMARK(BM_BandSes)->Unit(benchmark::kMicrosecond);
+
+void BM_BandFloor(benchmark::State& state) {
+  BandFixture f;
+  const EnvelopeSpectrum ses = f.analyzer.Compute(f.band, {.max_alpha_hz = f.max_alpha_hz});
+  std::vector<double> power(ses.level.size());
+  for (size_t i = 0; i < power.size(); ++i) power[i] = ses.level[i] * ses.level[i];
+  for (auto _ : state) {
+    const NormalizedSpectrum n = NormalizeSpectrum(power, ses.resolution_hz);
+    benchmark::DoNotOptimize(n.z.data());
+  }
+  state.SetLabel(std::to_string(power.size()) + " bins");
+}
+BENCHMARK(BM_BandFloor)->Unit(benchmark::kMicrosecond);
+
+void BM_BandFourCombs(benchmark::State& state) {
+  BandFixture f;
+  const EnvelopeSpectrum ses = f.analyzer.Compute(f.band, {.max_alpha_hz = f.max_alpha_hz});
+  std::vector<double> power(ses.level.size());
+  for (size_t i = 0; i < power.size(); ++i) power[i] = ses.level[i] * ses.level[i];
+  const NormalizedSpectrum n = NormalizeSpectrum(power, ses.resolution_hz);
+  DetectionContext ctx;
+  ctx.shaft_hz = kShaftHz;
+  ctx.multiplicity = 256;
+  for (auto _ : state) {
+    for (const auto& fam : f.families) {
+      const FamilyDetection d = DetectFamily(n, fam, ctx);
+      benchmark::DoNotOptimize(d.p_value);
+    }
+  }
+}
+BENCHMARK(BM_BandFourCombs)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 #include "dsp/detection.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -39,6 +40,49 @@ double NormalizedSpectrum::PairPValue(double z_value) const {
   return q * (2.0 - q);
 }
 
+namespace {
+
+// k-th smallest (0-based) of a[0, n), partially reordering a: the value std::nth_element returns
+// (an order statistic is unique as a value), found by quickselect with median-of-3 pivots and a
+// branchless Lomuto partition. Why: on a noise spectrum every comparison of nth_element's
+// partition is a coin flip the branch predictor loses; here the partition is data-independent
+// straight-line code, about 3x faster on the floor's 401-bin windows.
+double SelectKth(double* a, int n, int k) {
+  int lo = 0, hi = n;
+  for (int round = 0; hi - lo > 32 && round < 64; ++round) {
+    const double x = a[lo], y = a[lo + (hi - lo) / 2], z = a[hi - 1];
+    const double pivot = std::max(std::min(x, y), std::min(std::max(x, y), z));
+    int store = lo;  // [lo, store) < pivot <= [store, i)
+    for (int i = lo; i < hi; ++i) {
+      const double v = a[i];
+      a[i] = a[store];
+      a[store] = v;
+      store += v < pivot;
+    }
+    if (k < store) {
+      hi = store;
+    } else if (store > lo) {
+      lo = store;
+    } else {
+      // Nothing below the pivot: it is the range's minimum. Gather its copies (ties) in front so
+      // the range shrinks even when many values are equal.
+      int eq = lo;
+      for (int i = lo; i < hi; ++i) {
+        const double v = a[i];
+        a[i] = a[eq];
+        a[eq] = v;
+        eq += !(pivot < v);
+      }
+      if (k < eq) return pivot;
+      lo = eq;
+    }
+  }
+  std::nth_element(a + lo, a + k, a + hi);
+  return a[k];
+}
+
+}  // namespace
+
 NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
                                      double resolution_hz,
                                      const DetectionOptions& options) {
@@ -68,9 +112,7 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
     int start = anchors[a] - w / 2;
     start = std::clamp(start, 1, n - w);
     std::copy(power.begin() + start, power.begin() + start + w, buf.begin());
-    auto mid = buf.begin() + w / 2;
-    std::nth_element(buf.begin(), mid, buf.end());
-    anchor_floor[a] = *mid / std::numbers::ln2;
+    anchor_floor[a] = SelectKth(buf.data(), w, w / 2) / std::numbers::ln2;
   }
   // Linear interpolation between anchors.
   size_t a = 0;
@@ -94,17 +136,29 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
 
 double LogGammaUpperTail(int m, double x) {
   if (x <= 0.0) return 0.0;
-  // Q(m, x) = exp(-x) sum_{j<m} x^j / j!, summed in log space.
+  // Q(m, x) = exp(-x) sum_{j<m} x^j / j!, summed in log space: the log terms are formed twice
+  // (once for their maximum, once for the sum) instead of stored, so the hot comb loop allocates
+  // nothing; both passes produce the same values.
+  constexpr int kTable = 256;
+  static const std::array<double, kTable> log_j = [] {
+    std::array<double, kTable> t{};
+    for (int j = 1; j < kTable; ++j) t[j] = std::log(double(j));
+    return t;
+  }();
+  const double log_x = std::log(x);
+  auto log_of = [&](int j) { return j < kTable ? log_j[j] : std::log(double(j)); };
   double log_term = 0.0;  // j = 0
   double log_max = 0.0;
-  std::vector<double> logs(m);
-  for (int j = 0; j < m; ++j) {
-    if (j > 0) log_term += std::log(x) - std::log(double(j));
-    logs[j] = log_term;
+  for (int j = 1; j < m; ++j) {
+    log_term += log_x - log_of(j);
     log_max = std::max(log_max, log_term);
   }
   double s = 0.0;
-  for (double l : logs) s += std::exp(l - log_max);
+  log_term = 0.0;
+  for (int j = 0; j < m; ++j) {
+    if (j > 0) log_term += log_x - log_of(j);
+    s += std::exp(log_term - log_max);
+  }
   return std::min(0.0, -x + log_max + std::log(s));
 }
 
@@ -115,7 +169,11 @@ double GammaThreshold(int m, double alpha_over_mult) {
   while (LogGammaUpperTail(m, hi) > target) hi *= 2.0;
   for (int it = 0; it < 100; ++it) {
     const double mid = 0.5 * (lo + hi);
+    const double old_lo = lo, old_hi = hi;
     (LogGammaUpperTail(m, mid) > target ? lo : hi) = mid;
+    // Once an iteration changes nothing (the bracket is down to adjacent doubles) no later one
+    // can: stop there, with the same result as running all 100.
+    if (lo == old_lo && hi == old_hi) break;
   }
   return hi;
 }
@@ -139,7 +197,7 @@ namespace {
 // Distance (Hz) from f to the nearest multiple m * base, m >= 1.
 double DistanceToHarmonic(double f, double base) {
   if (!(base > 0.0)) return std::numeric_limits<double>::infinity();
-  const double m = std::max(1.0, std::round(f / base));
+  const double m = std::max(1.0, std::nearbyint(f / base));  // inlined; ties give equal distances
   return std::abs(f - m * base);
 }
 
@@ -198,15 +256,46 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
   const double ds = f_top > 0.0 ? 0.5 * df / f_top : 1.0;
   const int grid = std::max(1, static_cast<int>(std::ceil((s_hi - s_lo) / ds)) + 1);
 
-  // -ln p of the larger of bins (i, i+1), capped, for every bin: the grid walk is table look-ups.
-  std::vector<double> pair_score(nbins, 0.0);
-  double f_low = std::numeric_limits<double>::infinity();
-  for (const auto& l : family.lines) f_low = std::min(f_low, l.nominal_hz);
-  const int i_first = std::max(0, static_cast<int>(std::floor(f_low * s_lo / df)) - 1);
-  const int i_last = std::min(nbins - 1, static_cast<int>(std::ceil(f_top / df)) + 2);
-  for (int i = i_first; i < i_last && i + 1 < nbins; ++i) {
-    const double p = spectrum.PairPValue(std::max(spectrum.z[i], spectrum.z[i + 1]));
-    pair_score[i] = std::min(-std::log(std::max(p, 1e-300)), options.max_line_score);
+  // -ln p of the larger of bins (i, i+1), capped: computed on first use (three transcendentals a
+  // bin), so only the bins some line's search window visits are paid for.
+  std::vector<double> pair_score(nbins, -1.0);  // < 0: not computed yet
+  auto score_at = [&](int i) {
+    double& score = pair_score[i];
+    if (score < 0.0) {
+      const double p = spectrum.PairPValue(std::max(spectrum.z[i], spectrum.z[i + 1]));
+      score = std::min(-std::log(std::max(p, 1e-300)), options.max_line_score);
+    }
+    return score;
+  };
+  // Lines whose whole search range [f_l s_lo, f_l s_hi] stays clear of every exclusion by more
+  // than the largest guard never need excluded_at() on the grid (the common case); the test is
+  // conservative (a wider guard), so the lines it keeps get the exact per-s test as before.
+  auto harmonic_near = [](double lo, double hi, double base, double g) {
+    if (!(base > 0.0)) return false;
+    const double m = std::max(1.0, std::ceil((lo - g) / base));
+    return m * base <= hi + g;
+  };
+  std::vector<char> may_exclude(nl, 1);
+  for (int l = 0; l < nl; ++l) {
+    const double fl = family.lines[l].nominal_hz;
+    const double lo = fl * s_lo, hi = fl * s_hi;
+    const double g =
+        1.01 * std::max(options.guard_bins * df, options.guard_fraction * hi) + 1e-9 * hi;
+    bool near = !(fl > 0.0) || !(lo > 0.0) || hi / df + 2.0 >= nbins - 1;
+    if (context.exclude_shaft) {
+      // At the comb's speed the shaft lines move with s: distance s |f_l - m base|.
+      const double m = std::max(1.0, std::round(fl / shaft_base));
+      near = near || s_lo * std::abs(fl - m * shaft_base) <= g ||
+             std::abs(fl / shaft_base - (std::floor(fl / shaft_base) + 0.5)) < 1e-6;
+      const double fixed =
+          shaft_base * (context.measured_shaft_scale > 0.0 ? context.measured_shaft_scale : 1.0);
+      near = near || harmonic_near(lo, hi, fixed, g);
+    }
+    if (context.exclude_mains)
+      for (double mains : options.mains_hz) near = near || harmonic_near(lo, hi, mains, g);
+    for (double base : context.exclude_harmonics_of_hz)
+      near = near || harmonic_near(lo, hi, base, g);
+    may_exclude[l] = near;
   }
   std::vector<int> bins(nl, -1), prev_bins(nl, -2);
   double best_score = -1.0, best_s = c;
@@ -219,13 +308,13 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
     int used = 0;
     for (int l = 0; l < nl; ++l) {
       const double f = family.lines[l].nominal_hz * s;
-      if (excluded_at(f, s, nullptr)) {
+      if (may_exclude[l] && excluded_at(f, s, nullptr)) {
         bins[l] = -1;
         continue;
       }
       const int i0 = static_cast<int>(std::floor(f / df));
       bins[l] = i0;
-      score += pair_score[i0];
+      score += score_at(i0);
       ++used;
     }
     if (bins != prev_bins) {
