@@ -111,13 +111,14 @@ struct ChainRow {
   int m;      // envelope samples per node; m of a parent = 2 m of its children
 };
 
-// Per-thread buffers, kept between calls and grown on demand: a 10 s record needs ~16 MB of
-// them, and fresh allocations of that size cost page faults on every call (10 % of the run time).
+// Per-thread buffers, kept between calls and grown on demand: a 10 s record at 48 kHz needs
+// ~20 MB of them, and fresh allocations of that size cost page faults on every call (10 % of the
+// run time); the root table is also kept while the record length stays the same.
 struct ChainBuffers {
   size_t row_size = 0, node_size = 0;
   FftwArray<std::complex<float>> child, parent;  // all envelopes of a row, node after node
   FftwArray<std::complex<float>> in, odd;        // one node's transform input and output
-  std::vector<std::complex<float>> half_twiddle, base_twiddle;
+  std::vector<std::complex<float>> roots;        // e^{2 pi i j / m_top}
   std::unique_ptr<double[]> power;
 };
 
@@ -131,35 +132,35 @@ ChainBuffers& ThreadBuffers(size_t row_size, size_t node_size) {
   if (b.node_size < node_size) {
     b.in = AllocateComplexF(node_size);
     b.odd = AllocateComplexF(node_size);
-    b.power = std::make_unique<double[]>(2 * node_size);
+    b.power = std::make_unique<double[]>(node_size);
     b.node_size = node_size;
   }
   return b;
 }
 
-// half[j] = e^{i pi j / m} and base[j] = e^{2 pi i j / m}, j < m. Two-level tables (a coarse
-// step times a fine one, in double) keep it to ~2 sqrt(m) sin/cos evaluations instead of 2m,
-// which would cost more than the transforms they serve.
-void Twiddles(int m,
-              std::vector<std::complex<float>>* half,
-              std::vector<std::complex<float>>* base) {
-  const int fine = std::max(1, static_cast<int>(std::sqrt(2.0 * m)));
-  const int coarse = (2 * m + fine - 1) / fine;
-  std::vector<std::complex<double>> f(fine), c(coarse);
-  // Angle unit: pi / m; index k covers 0 .. 2m - 1.
-  for (int i = 0; i < fine; ++i) f[i] = std::polar(1.0, std::numbers::pi * i / m);
-  for (int i = 0; i < coarse; ++i) c[i] = std::polar(1.0, std::numbers::pi * i * fine / m);
-  auto at = [&](int k) {
-    const std::complex<double> a = c[k / fine], b = f[k % fine];
-    return std::complex<float>(static_cast<float>(a.real() * b.real() - a.imag() * b.imag()),
-                               static_cast<float>(a.real() * b.imag() + a.imag() * b.real()));
-  };
-  half->resize(m);
-  base->resize(m);
-  for (int j = 0; j < m; ++j) {
-    (*half)[j] = at(j);
-    (*base)[j] = at(2 * j);
+// out[j] = e^{2 pi i j / m}, j < m, as coarse step times fine step: ~2 sqrt(m) sin/cos instead
+// of m (which would cost more than the transforms the table serves), and a product loop that
+// vectorises. Error ~1e-7, the level of the single-precision transforms it feeds.
+void UnitRoots(int m, std::vector<std::complex<float>>* out) {
+  const int fine = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(m))));
+  const int coarse = (m + fine - 1) / fine;
+  std::vector<float> fr(fine), fi(fine);
+  for (int i = 0; i < fine; ++i) {
+    fr[i] = static_cast<float>(std::cos(2 * std::numbers::pi * i / m));
+    fi[i] = static_cast<float>(std::sin(2 * std::numbers::pi * i / m));
   }
+  out->resize(static_cast<size_t>(coarse) * fine);
+  float* o = reinterpret_cast<float*>(out->data());
+  for (int c = 0; c < coarse; ++c) {
+    const double angle = 2 * std::numbers::pi * static_cast<double>(c) * fine / m;
+    const float cr = static_cast<float>(std::cos(angle)), ci = static_cast<float>(std::sin(angle));
+    float* row = o + 2 * static_cast<size_t>(c) * fine;
+    for (int i = 0; i < fine; ++i) {
+      row[2 * i] = cr * fr[i] - ci * fi[i];
+      row[2 * i + 1] = cr * fi[i] + ci * fr[i];
+    }
+  }
+  out->resize(m);
 }
 
 // max(0, <|c|^4>/<|c|^2>^2 - 2) over m envelope samples.
@@ -174,16 +175,53 @@ double EnvelopeKurtosis(const std::complex<float>* envelope, int m, double* powe
   return sum2 > 0 ? std::max(0.0, m * sum4 / (sum2 * sum2) - 2.0) : 0.0;
 }
 
+// out[k mod m_out] = in[k - lo] * tw[(k mod m_tw) * tw_stride] for k in [lo, hi) (tw null: no
+// factor), in runs
+// where neither index wraps, so the inner loops are contiguous and vectorise. The complex product
+// is written out: std::complex's operator* checks for NaN/inf and does not vectorise.
+void PlaceBins(const std::complex<float>* in,
+               int lo,
+               int hi,
+               int m_out,
+               const std::complex<float>* tw,
+               int m_tw,
+               int tw_stride,
+               std::complex<float>* out) {
+  int k = lo;
+  while (k < hi) {
+    const int p = k % m_out;
+    int run = std::min(hi - k, m_out - p);
+    const float* v = reinterpret_cast<const float*>(in + (k - lo));
+    float* o = reinterpret_cast<float*>(out + p);
+    if (tw) {
+      const int q = k % m_tw;
+      run = std::min(run, m_tw - q);
+      const float* t = reinterpret_cast<const float*>(tw + static_cast<size_t>(q) * tw_stride);
+      const size_t step = 2 * static_cast<size_t>(tw_stride);
+      for (int j = 0; j < run; ++j) {
+        const float tr = t[j * step], ti = t[j * step + 1];
+        o[2 * j] = v[2 * j] * tr - v[2 * j + 1] * ti;
+        o[2 * j + 1] = v[2 * j] * ti + v[2 * j + 1] * tr;
+      }
+    } else {
+      std::memcpy(o, v, sizeof(float) * 2 * run);
+    }
+    k += run;
+  }
+}
+
 // Kurtosis of every node of one chain, written to result[row].
 //
-// The deepest row is computed directly: each node's bins, shifted to DC, inverse-transformed at
-// m >= 2B (B bins), which samples c twice per 1/(bandwidth), enough for |c|^4 to be alias-free.
-// Each shallower row then reuses its children. A parent has m_p = 2 m_c samples; its even
-// samples are c_p(2s) = sum_j Y_j e^{2 pi i j s / m_c} = c_lo(s) + e^{2 pi i off s / m_c} c_hi(s),
-// the children's envelopes (off = first bin of the upper child relative to the parent's), and its
-// odd samples are c_p(2s+1) = IFFT_{m_c}(Y_j e^{i pi j / m_c})(s), a transform of half the
-// parent's size. So every row but the deepest costs half a direct computation, and the result is
-// the same (exact) sampling of the same ideal band-pass envelope.
+// Every node's envelope is sampled on its row's grid of m points over the record, with each bin
+// k placed at position k mod m (not shifted to DC: a frequency shift only rotates the phase of c,
+// and this placement makes the rows add up). m >= 2B (B bins in a node) samples c twice per
+// 1/(bandwidth), enough for |c|^4 to be alias-free, so the moments are exact.
+// The deepest row is computed directly, one inverse FFT of size m per node. Each shallower row
+// reuses its children: a parent has m_p = 2 m_c samples, and
+//   even samples  c_p(2s)   = sum_k Y_k e^{2 pi i k s / m_c} = c_lo(s) + c_hi(s),
+//   odd samples   c_p(2s+1) = IFFT_{m_c}(Y_k e^{2 pi i k / m_p})(s),
+// so a parent costs one transform of half its size plus an addition: every row but the deepest
+// costs half of a direct computation, for the same exact samples.
 void ProcessChain(const std::vector<std::complex<double>>& x,
                   int n,
                   double scale,
@@ -197,83 +235,89 @@ void ProcessChain(const std::vector<std::complex<double>>& x,
   };
   const ChainRow& deepest = chain.front();
   const size_t row_size = static_cast<size_t>(deepest.nodes) * deepest.m;
-  ChainBuffers& b = ThreadBuffers(row_size, chain.back().m / (chain.size() > 1 ? 2 : 1));
+  const int m_top = chain.back().m;
+  ChainBuffers& b = ThreadBuffers(row_size, m_top);
   std::complex<float>* child = b.child.get();
   std::complex<float>* parent = b.parent.get();
+  std::complex<float>* scaled = b.odd.get();  // scratch: a node's weighted, scaled bins
+  std::complex<float>* in = b.in.get();
 
   {  // Deepest row, directly.
-    ComplexFftF fft(deepest.m, +1);
+    const int m = deepest.m;
+    ComplexFftF fft(m, +1);
     std::vector<double>& row = (*result)[deepest.row];
     row.assign(deepest.nodes, 0.0);
     for (int i = 0; i < deepest.nodes; ++i) {
       int lo, hi;
       bounds(i, deepest.nodes, &lo, &hi);
-      std::complex<float>* env = child + static_cast<size_t>(i) * deepest.m;
-      const double energy = FillNode(x.data(), lo, hi, n, scale, b.in.get());
+      std::complex<float>* env = child + static_cast<size_t>(i) * m;
+      const double energy = FillNode(x.data(), lo, hi, n, scale, scaled);
       if (!(energy > empty_energy)) {
-        std::fill(env, env + deepest.m, std::complex<float>(0.0f));
+        std::fill(env, env + m, std::complex<float>(0.0f));
         continue;
       }
-      std::fill(b.in.get() + (hi - lo), b.in.get() + deepest.m, std::complex<float>(0.0f));
-      fft.Execute(b.in.get(), env);
-      row[i] = EnvelopeKurtosis(env, deepest.m, b.power.get());
+      std::fill(in, in + m, std::complex<float>(0.0f));
+      PlaceBins(scaled, lo, hi, m, nullptr, 1, 1, in);
+      fft.Execute(in, env);
+      row[i] = EnvelopeKurtosis(env, m, b.power.get());
     }
   }
+  if (chain.size() == 1) return;
 
+  // e^{2 pi i j / m_top}, j < m_top (kept while m_top stays the same); a row with
+  // m_p = m_top / q uses every q-th entry.
+  if (b.roots.size() != static_cast<size_t>(m_top)) UnitRoots(m_top, &b.roots);
   for (size_t level = 1; level < chain.size(); ++level) {
     const ChainRow& up = chain[level];
-    const int mc = up.m / 2;
+    const int mp = up.m, mc = up.m / 2;
+    const int stride = m_top / mp;
     ComplexFftF fft(mc, +1);
-    Twiddles(mc, &b.half_twiddle, &b.base_twiddle);
     std::vector<double>& row = (*result)[up.row];
     row.assign(up.nodes, 0.0);
+    std::complex<float>* odd = in + mc;  // second half of the node buffer (size m_top >= 2 mc)
     for (int i = 0; i < up.nodes; ++i) {
-      int lo, hi, mid, unused;
+      int lo, hi;
       bounds(i, up.nodes, &lo, &hi);
-      bounds(2 * i + 1, 2 * up.nodes, &mid, &unused);
-      std::complex<float>* env = parent + static_cast<size_t>(i) * up.m;
-      std::complex<float>* in = b.in.get();
-      const double energy = FillNode(x.data(), lo, hi, n, scale, in);
+      std::complex<float>* env = parent + static_cast<size_t>(i) * mp;
+      const double energy = FillNode(x.data(), lo, hi, n, scale, scaled);
       if (!(energy > empty_energy)) {
-        std::fill(env, env + up.m, std::complex<float>(0.0f));
+        std::fill(env, env + mp, std::complex<float>(0.0f));
         continue;
       }
-      SPALLKIT_CHECK(hi - lo <= mc, "kurtogram node of " << hi - lo << " bins, " << mc);
-      // Odd samples: the parent's bins advanced by half a sample.
-      // (Complex products written out: std::complex's operator* checks for NaN/inf and does
-      // not vectorise.)
-      {
-        float* v = reinterpret_cast<float*>(in);
-        const float* t = reinterpret_cast<const float*>(b.half_twiddle.data());
-        for (int j = 0; j < hi - lo; ++j) {
-          const float re = v[2 * j] * t[2 * j] - v[2 * j + 1] * t[2 * j + 1];
-          const float im = v[2 * j] * t[2 * j + 1] + v[2 * j + 1] * t[2 * j];
-          v[2 * j] = re;
-          v[2 * j + 1] = im;
-        }
-      }
-      std::fill(in + (hi - lo), in + mc, std::complex<float>(0.0f));
-      fft.Execute(in, b.odd.get());
-      // Even samples from the children, interleaved with the odd ones.
+      SPALLKIT_CHECK(hi - lo <= mc, "kurtogram node of " << hi - lo << " bins, m " << mc);
+      std::fill(in, in + mc, std::complex<float>(0.0f));
+      PlaceBins(scaled, lo, hi, mc, b.roots.data(), mp, stride, in);
+      fft.Execute(in, odd);
+      // Even samples: the sum of the children; interleaved with the odd ones.
       const float* lower = reinterpret_cast<const float*>(child + static_cast<size_t>(2 * i) * mc);
       const float* upper =
           reinterpret_cast<const float*>(child + static_cast<size_t>(2 * i + 1) * mc);
-      const float* odd = reinterpret_cast<const float*>(b.odd.get());
-      const float* base = reinterpret_cast<const float*>(b.base_twiddle.data());
+      const float* o = reinterpret_cast<const float*>(odd);
       float* e = reinterpret_cast<float*>(env);
-      const int off = mid - lo;
-      int index = 0;
-      for (int s = 0; s < mc; ++s) {
-        const float tr = base[2 * index], ti = base[2 * index + 1];
-        const float ur = upper[2 * s], ui = upper[2 * s + 1];
-        e[4 * s] = lower[2 * s] + tr * ur - ti * ui;
-        e[4 * s + 1] = lower[2 * s + 1] + tr * ui + ti * ur;
-        e[4 * s + 2] = odd[2 * s];
-        e[4 * s + 3] = odd[2 * s + 1];
-        index += off;
-        if (index >= mc) index -= mc;
+      // Two samples at a time with vector shuffles (mc is a multiple of 64, see FftFastSize),
+      // accumulating the moments on the way (|c|^2 in float, sums in double).
+      typedef float F4 __attribute__((vector_size(16)));
+      typedef float F8 __attribute__((vector_size(32)));
+      typedef double D4 __attribute__((vector_size(32)));
+      D4 acc2 = {0, 0, 0, 0}, acc4 = {0, 0, 0, 0};
+      for (int s = 0; s < mc; s += 2) {
+        F4 l, u, d;
+        std::memcpy(&l, lower + 2 * s, sizeof(l));
+        std::memcpy(&u, upper + 2 * s, sizeof(u));
+        std::memcpy(&d, o + 2 * s, sizeof(d));
+        const F4 sum = l + u;
+        const F8 mixed = __builtin_shufflevector(sum, d, 0, 1, 4, 5, 2, 3, 6, 7);
+        std::memcpy(e + 4 * s, &mixed, sizeof(mixed));
+        const F4 a = sum * sum, c = d * d;
+        const F4 power =
+            __builtin_shufflevector(a, c, 0, 2, 4, 6) + __builtin_shufflevector(a, c, 1, 3, 5, 7);
+        const D4 pd = __builtin_convertvector(power, D4);
+        acc2 += pd;
+        acc4 += pd * pd;
       }
-      row[i] = EnvelopeKurtosis(env, up.m, b.power.get());
+      const double sum2 = (acc2[0] + acc2[1]) + (acc2[2] + acc2[3]);
+      const double sum4 = (acc4[0] + acc4[1]) + (acc4[2] + acc4[3]);
+      row[i] = sum2 > 0 ? std::max(0.0, mp * sum4 / (sum2 * sum2) - 2.0) : 0.0;
     }
     std::swap(child, parent);
   }
