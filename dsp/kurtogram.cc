@@ -66,40 +66,23 @@ void SumAndSumOfSquares(const double* p, int m, double* sum, double* sum_sq) {
   *sum_sq = total_sq;
 }
 
-// Copies bins [lo, hi) of x, times `scale`, to single precision in out[0 .. hi-lo), with the
-// analytic-signal weights (1 inside, 1/2 at DC and Nyquist), and returns the node's energy
-// sum |w_k x_k|^2 (unscaled). Written with four-wide vectors (GCC/Clang extension): it streams
-// the whole spectrum once per row, so it has to run at memory speed.
-double FillNode(
-    const std::complex<double>* x, int lo, int hi, int n, double scale, std::complex<float>* out) {
-  typedef double V4 __attribute__((vector_size(32)));
-  typedef float F4 __attribute__((vector_size(16)));
-  const double* d = reinterpret_cast<const double*>(x + lo);
-  float* f = reinterpret_cast<float*>(out);
-  const int count = 2 * (hi - lo);  // doubles
-  V4 s0 = {0, 0, 0, 0};
-  const V4 k = {scale, scale, scale, scale};
+// sum |v_j|^2 over count values, in double with four-wide vector accumulators.
+double Energy(const std::complex<float>* v, int count) {
+  typedef float F8 __attribute__((vector_size(32)));
+  typedef double D4 __attribute__((vector_size(32)));
+  const float* f = reinterpret_cast<const float*>(v);
+  const int floats = 2 * count;
+  D4 acc = {0, 0, 0, 0};
   int j = 0;
-  for (; j + 4 <= count; j += 4) {
-    V4 a;
-    std::memcpy(&a, d + j, sizeof(a));
-    s0 += a * a;
-    const F4 b = __builtin_convertvector(a * k, F4);
-    std::memcpy(f + j, &b, sizeof(b));
+  for (; j + 8 <= floats; j += 8) {
+    F8 a;
+    std::memcpy(&a, f + j, sizeof(a));
+    const F8 sq = a * a;
+    acc += __builtin_convertvector(__builtin_shufflevector(sq, sq, 0, 1, 2, 3), D4) +
+           __builtin_convertvector(__builtin_shufflevector(sq, sq, 4, 5, 6, 7), D4);
   }
-  double total = (s0[0] + s0[1]) + (s0[2] + s0[3]);
-  for (; j < count; ++j) {
-    total += d[j] * d[j];
-    f[j] = static_cast<float>(d[j] * scale);
-  }
-  if (lo == 0) {
-    total -= 0.75 * std::norm(x[0]);
-    out[0] *= 0.5f;
-  }
-  if (2 * (hi - 1) == n) {
-    total -= 0.75 * std::norm(x[hi - 1]);
-    out[hi - 1 - lo] *= 0.5f;
-  }
+  double total = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+  for (; j < floats; ++j) total += static_cast<double>(f[j]) * f[j];
   return total;
 }
 
@@ -176,9 +159,8 @@ double EnvelopeKurtosis(const std::complex<float>* envelope, int m, double* powe
 }
 
 // out[k mod m_out] = in[k - lo] * tw[(k mod m_tw) * tw_stride] for k in [lo, hi) (tw null: no
-// factor), in runs
-// where neither index wraps, so the inner loops are contiguous and vectorise. The complex product
-// is written out: std::complex's operator* checks for NaN/inf and does not vectorise.
+// factor), in runs where neither index wraps, so the inner loops are contiguous. The complex
+// product is written out: std::complex's operator* checks for NaN/inf and does not vectorise.
 void PlaceBins(const std::complex<float>* in,
                int lo,
                int hi,
@@ -222,9 +204,8 @@ void PlaceBins(const std::complex<float>* in,
 //   odd samples   c_p(2s+1) = IFFT_{m_c}(Y_k e^{2 pi i k / m_p})(s),
 // so a parent costs one transform of half its size plus an addition: every row but the deepest
 // costs half of a direct computation, for the same exact samples.
-void ProcessChain(const std::vector<std::complex<double>>& x,
+void ProcessChain(const std::complex<float>* xf,
                   int n,
-                  double scale,
                   double empty_energy,
                   const std::vector<ChainRow>& chain,
                   std::vector<std::vector<double>>* result) {
@@ -239,8 +220,9 @@ void ProcessChain(const std::vector<std::complex<double>>& x,
   ChainBuffers& b = ThreadBuffers(row_size, m_top);
   std::complex<float>* child = b.child.get();
   std::complex<float>* parent = b.parent.get();
-  std::complex<float>* scaled = b.odd.get();  // scratch: a node's weighted, scaled bins
   std::complex<float>* in = b.in.get();
+  // Node energies (Parseval), deepest row from the bins, each parent the sum of its children.
+  std::vector<double> energy(deepest.nodes), parent_energy(deepest.nodes);
 
   {  // Deepest row, directly.
     const int m = deepest.m;
@@ -251,13 +233,13 @@ void ProcessChain(const std::vector<std::complex<double>>& x,
       int lo, hi;
       bounds(i, deepest.nodes, &lo, &hi);
       std::complex<float>* env = child + static_cast<size_t>(i) * m;
-      const double energy = FillNode(x.data(), lo, hi, n, scale, scaled);
-      if (!(energy > empty_energy)) {
+      energy[i] = Energy(xf + lo, hi - lo);
+      if (!(energy[i] > empty_energy)) {
         std::fill(env, env + m, std::complex<float>(0.0f));
         continue;
       }
       std::fill(in, in + m, std::complex<float>(0.0f));
-      PlaceBins(scaled, lo, hi, m, nullptr, 1, 1, in);
+      PlaceBins(xf + lo, lo, hi, m, nullptr, 1, 1, in);
       fft.Execute(in, env);
       row[i] = EnvelopeKurtosis(env, m, b.power.get());
     }
@@ -279,14 +261,14 @@ void ProcessChain(const std::vector<std::complex<double>>& x,
       int lo, hi;
       bounds(i, up.nodes, &lo, &hi);
       std::complex<float>* env = parent + static_cast<size_t>(i) * mp;
-      const double energy = FillNode(x.data(), lo, hi, n, scale, scaled);
-      if (!(energy > empty_energy)) {
+      parent_energy[i] = energy[2 * i] + energy[2 * i + 1];
+      if (!(parent_energy[i] > empty_energy)) {
         std::fill(env, env + mp, std::complex<float>(0.0f));
         continue;
       }
       SPALLKIT_CHECK(hi - lo <= mc, "kurtogram node of " << hi - lo << " bins, m " << mc);
       std::fill(in, in + mc, std::complex<float>(0.0f));
-      PlaceBins(scaled, lo, hi, mc, b.roots.data(), mp, stride, in);
+      PlaceBins(xf + lo, lo, hi, mc, b.roots.data(), mp, stride, in);
       fft.Execute(in, odd);
       // Even samples: the sum of the children; interleaved with the odd ones.
       const float* lower = reinterpret_cast<const float*>(child + static_cast<size_t>(2 * i) * mc);
@@ -320,6 +302,7 @@ void ProcessChain(const std::vector<std::complex<double>>& x,
       row[i] = sum2 > 0 ? std::max(0.0, mp * sum4 / (sum2 * sum2) - 2.0) : 0.0;
     }
     std::swap(child, parent);
+    std::swap(energy, parent_energy);
   }
 }
 
@@ -390,6 +373,17 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   }
   const double scale = total_energy > 0 ? 1.0 / std::sqrt(total_energy / bins) : 1.0;
   constexpr double kEmptyNode = 1e-20;
+  // The spectrum in single precision from here on, scaled to unit RMS bin (so the float range is
+  // never an issue) and with the analytic-signal weights (1, and 1/2 at DC and Nyquist). Each row
+  // streams it once; half the bytes of the double spectrum.
+  std::vector<std::complex<float>> xf(bins);
+  for (int k = 0; k < bins; ++k) {
+    const bool edge = (k == 0) || (2 * k == n);
+    const double w = edge ? 0.5 * scale : scale;
+    xf[k] = std::complex<float>(static_cast<float>(x[k].real() * w),
+                                static_cast<float>(x[k].imag() * w));
+  }
+  const double empty_energy = kEmptyNode * total_energy * scale * scale;
 
   // The two chains: binary rows (L, ..., 1, 0) and ternary rows (L-0.4, ..., 1.6), deepest
   // first. The deepest row gets m >= 2B (B = most bins in a node; M >= 2B - 1 makes the moments
@@ -426,7 +420,7 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
 #pragma omp parallel for num_threads(std::min(threads, chain_count)) schedule(static, 1)
 #endif
   for (int c = 0; c < chain_count; ++c) {
-    ProcessChain(x, n, scale, kEmptyNode * total_energy, chains[c], &result);
+    ProcessChain(xf.data(), n, empty_energy, chains[c], &result);
   }
   for (const Row& row : rows) out.levels.push_back(row.level);
   out.kurtosis = std::move(result);
