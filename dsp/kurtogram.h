@@ -48,9 +48,9 @@ struct KurtogramOptions {
   // Allowed: 1 <= L <= floor(log2 N) - 4 (nodes of at least 8 FFT bins); else InputError.
   int max_level = 0;
   double min_center_hz = 0;  // nodes centred below this are never `best`
-  // Threads over the rows (OpenMP); 0 = OpenMP's default (all cores, or OMP_NUM_THREADS). The
-  // result does not depend on it. Default 1: callers that run several analyses at once (tests,
-  // sweeps) should not oversubscribe; a single interactive analysis can ask for more.
+  // Threads (OpenMP) over the two chains of rows (binary, ternary), so at most 2 are used;
+  // 0 = OpenMP's default. The result does not depend on it. Default 1: callers that run several
+  // analyses at once (tests, sweeps) should not oversubscribe.
   int threads = 1;
 };
 
