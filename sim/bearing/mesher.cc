@@ -391,6 +391,37 @@ BearingMesh MeshBearing(const Scene& scene) {
   return out;
 }
 
+BearingMesh MeshBearingHousing(const Scene& scene) {
+  const SceneGeometry& g = scene.geometry;
+  const double h = scene.mesh.size_m, hc = scene.mesh.contact_size_m;
+  BearingMesh out;
+  const int z = g.bearing.num_elements;
+  out.roller_radius_m = 0.5 * g.bearing.element_diameter_m;
+  out.pitch_radius_m = 0.5 * g.bearing.pitch_diameter_m;
+  out.outer_raceway_radius_m =
+      0.5 * g.bearing.outer_raceway_diameter_m + 0.25 * g.diametral_clearance_m;
+  out.inner_raceway_radius_m =
+      0.5 * g.bearing.inner_raceway_diameter_m - 0.25 * g.diametral_clearance_m;
+  for (int j = 0; j < z; ++j)
+    out.roller_angles_rad.push_back(-kPi / 2 + g.roller_phase_rad + 2 * kPi * j / z);
+  fe::AnnulusSpec os;
+  os.inner_radius = out.outer_raceway_radius_m;
+  os.outer_radius = 0.5 * g.outer_ring_outer_diameter_m;
+  os.n_theta = static_cast<int>(std::lround(2 * kPi * os.inner_radius / hc));
+  os.n_radial = std::max(2, static_cast<int>(std::lround((os.outer_radius - os.inner_radius) / h)));
+  os.theta0 = -kPi / 2;
+  os.radial_ratio = h / hc;
+  fe::Mesh outer = fe::MakeAnnulus("outer_ring", os);
+  Rename(&outer, "outer_ring.inner", "outer_ring.raceway");
+  Rename(&outer, "outer_ring.outer", "outer_ring.outside");
+  std::vector<fe::Mesh> parts;
+  parts.push_back(std::move(outer));
+  parts.push_back(MakeAdapter(g, os.n_theta, os.outer_radius, scene, &out.adapter_width_m));
+  out.mesh = fe::MergeMeshes(parts);
+  fe::ValidateMesh(out.mesh);
+  return out;
+}
+
 MeshQualityReport MeasureMeshQuality(const fe::Mesh& mesh) {
   MeshQualityReport r;
   r.parts.resize(mesh.num_parts());

@@ -51,6 +51,12 @@ struct BearingMesh {
 // the geometry (e.g. a spall narrower than 1.5 elements).
 BearingMesh MeshBearing(const Scene& scene);
 
+// The housing only, for the hybrid model (scene model.fidelity = "hybrid", sim/bearing/
+// hybrid_rollers.h): parts "outer_ring" and "adapter", meshed exactly as in MeshBearing (same
+// names, curves, node sets, clearance shift); rollers, cage and inner ring are rigid bodies with
+// exact profiles there, not meshed. The other fields of BearingMesh are filled as in MeshBearing.
+BearingMesh MeshBearingHousing(const Scene& scene);
+
 // Element quality of one part: interior angles, aspect ratio (longest / shortest edge), skew
 // (largest |interior angle - 90 deg|), counts and area.
 struct PartQuality {

@@ -61,7 +61,9 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
     : scene_(scene), options_(options) {
   std::string err;
   if (!options_.IsValid(&err)) throw InputError(err);
-  mesh_ = MeshBearing(scene_);
+  const bool hybrid = scene_.model.fidelity == "hybrid";
+  num_rollers_ = scene_.geometry.bearing.num_elements;
+  mesh_ = hybrid ? MeshBearingHousing(scene_) : MeshBearing(scene_);
   const fe::Mesh& mesh = mesh_.mesh;
   const double t = scene_.geometry.thickness_m;
 
@@ -93,7 +95,13 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
   const double omega = scene_.operation.inner_ring_speed_rad_s;
   const double ramp = scene_.operation.ramp_s;
   speed_ = solver::RampedSpeed(omega, ramp);
-  {
+  if (hybrid) {
+    // Rollers, cage and inner ring: rigid bodies in one contributor (before the tie, which
+    // must see the contact forces on the ring nodes).
+    hybrid_ = std::make_unique<HybridRollers>(
+        scene_, mesh_, solver_->state(), options_.hybrid, options_.load_ramp_fraction * ramp);
+    solver_->AddContributor(hybrid_.get());
+  } else {
     auto bore = mesh.curves.find("inner_ring.bore");
     if (bore == mesh.curves.end()) throw InputError("bearing model: mesh has no 'inner_ring.bore'");
     solver::RigidBody shaft;
@@ -108,7 +116,7 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
     shaft_body_ = solver_->AddRigidBody(std::move(shaft));
   }
 
-  // Contact pairs.
+  // Contact pairs (FE model).
   contact::ContactPairOptions race;
   race.penalty_law = contact::PenaltyLaw::kBulkModulus;
   race.penalty_scale = options_.race_penalty_scale;
@@ -118,7 +126,7 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
   race.normal_damping_ratio = options_.contact_damping_ratio;
   contact::ContactPairOptions cage = race;
   cage.penalty_scale = options_.cage_penalty_scale;
-  const int z = scene_.geometry.bearing.num_elements;
+  const int z = hybrid ? 0 : scene_.geometry.bearing.num_elements;
   for (int j = 0; j < z; ++j) {
     const std::string roller = "roller" + std::to_string(j);
     const std::string surf = roller + ".surface";
@@ -138,8 +146,10 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
   for (auto& p : cage_pairs_) solver_->AddContributor(p.get());
 
   // Constraints last: they see every force.
-  cage_ = std::make_unique<RigidPart>("cage_rigid", NodeSet(mesh, "cage.all"));
-  solver_->AddContributor(cage_.get());
+  if (!hybrid) {
+    cage_ = std::make_unique<RigidPart>("cage_rigid", NodeSet(mesh, "cage.all"));
+    solver_->AddContributor(cage_.get());
+  }
   {
     const std::vector<int>& seat = NodeSet(mesh, "adapter.seat");
     auto outside = mesh.curves.find("outer_ring.outside");
@@ -186,26 +196,41 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
 }
 
 double BearingModel::RollerOuterForce(int j) const {
+  if (hybrid_) return hybrid_->OuterForce(j);
   return outer_pairs_[j]->Resultant().NormalMagnitude();
 }
 double BearingModel::RollerInnerForce(int j) const {
+  if (hybrid_) return hybrid_->InnerForce(j);
   return inner_pairs_[j]->Resultant().NormalMagnitude();
 }
 double BearingModel::RollerCageForce(int j) const {
+  if (hybrid_) return hybrid_->CageForce(j);
   return cage_pairs_[2 * j]->Resultant().NormalMagnitude() +
          cage_pairs_[2 * j + 1]->Resultant().NormalMagnitude();
 }
 
 BodyMotion BearingModel::RollerMotion(int j) const {
+  if (hybrid_) {
+    const HybridRollers::Body& b = hybrid_->roller(j);
+    return {b.x, b.y, b.vx, b.vy, b.omega};
+  }
   return FitMotion(solver_->state(), roller_nodes_[j]);
 }
 
 BodyMotion BearingModel::CageMotion() const {
+  if (hybrid_) {
+    const HybridRollers::Body& b = hybrid_->cage();
+    return {b.x, b.y, b.vx, b.vy, b.omega};
+  }
   const RigidPart::Motion m = cage_->ComputeMotion(solver_->state());
   return {m.cx, m.cy, m.vx, m.vy, m.omega};
 }
 
 BodyMotion BearingModel::InnerRingMotion() const {
+  if (hybrid_) {
+    const HybridRollers::Body& b = hybrid_->shaft();
+    return {b.x, b.y, b.vx, b.vy, speed_(solver_->time())};
+  }
   const solver::RigidBodyState& s = solver_->rigid_body_state(shaft_body_);
   return {s.x, s.y, s.vx, s.vy, speed_(solver_->time())};
 }
@@ -221,7 +246,21 @@ double BearingModel::TheoreticalCageSpeed(double t) const {
 std::string BearingModel::Describe() const {
   std::ostringstream os;
   const fe::Mesh& m = mesh_.mesh;
-  os << "model: " << m.num_elements() << " elements, " << m.num_nodes() << " nodes, "
+  if (hybrid_) {
+    const HybridRollers& h = *hybrid_;
+    os << "model: hybrid (rigid rollers, cage and inner ring with exact profiles; FE outer ring "
+          "and adapter): "
+       << m.num_elements() << " elements, " << m.num_nodes()
+       << " nodes; Palmgren K_c = " << h.contact_stiffness() / std::pow(1e3, 10.0 / 9.0) * 1e-3
+       << " kN/mm^(10/9), spread +-" << h.spread_half_width() * 1e3 << " mm, roller mass "
+       << h.roller_mass(0) * 1e3 << " g, cage " << h.cage_mass() * 1e3 << " g, inner ring "
+       << h.shaft_mass() * 1e3 << " g; ring-adapter tie " << tie_->num_pairs() << " node pairs";
+    for (const SensorChannel& c : channels_)
+      os << "\nsensor " << c.sensor << " " << c.direction << ": node " << c.node << " ("
+         << c.distance_m * 1e3 << " mm from the point)";
+    return os.str();
+  }
+  os << "model: fe, " << m.num_elements() << " elements, " << m.num_nodes() << " nodes, "
      << m.num_parts() << " parts; "
      << outer_pairs_.size() + inner_pairs_.size() + cage_pairs_.size()
      << " contact pairs (penalty f = " << options_.race_penalty_scale << " races, "

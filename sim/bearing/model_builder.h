@@ -24,6 +24,13 @@
 //    spinning rings and rollers are not braked; LS-DYNA's *DAMPING_GLOBAL acts on absolute
 //    velocities and would brake them).
 // Clearance: the mesher opens P_d/4 per side (Harris's diametral clearance, docs/SCENE.md).
+//
+// With the scene's model.fidelity = "hybrid" (DESIGN.md level 3) only the outer ring and the
+// adapter are meshed (MeshBearingHousing; same tie, fixed bottom, damping and sensors as above)
+// and the rollers, cage and inner ring are rigid bodies with exact profiles in one
+// HybridRollers contributor (sim/bearing/hybrid_rollers.h): Palmgren contact with the raceway
+// nodes, the radial load and the ramped speed on the rigid inner ring. The accessors below
+// answer for either model; outer_pair / inner_pair exist only in the FE model.
 #pragma once
 
 #include <memory>
@@ -31,6 +38,7 @@
 #include <vector>
 
 #include "sim/bearing/constraints.h"
+#include "sim/bearing/hybrid_rollers.h"
 #include "sim/bearing/mesher.h"
 #include "sim/bearing/scene.h"
 #include "sim/contact/contact_pair.h"
@@ -47,6 +55,8 @@ struct BearingModelOptions {
   double contact_damping_ratio = 0.1;
   // Load ramp time as a fraction of the scene's ramp_s (1: load and speed ramp together).
   double load_ramp_fraction = 1.0;
+  // Hybrid model (scene model.fidelity = "hybrid") contact options.
+  HybridOptions hybrid;
 
   bool IsValid(std::string* error) const;
 };
@@ -78,7 +88,10 @@ class BearingModel {
   const Scene& scene() const { return scene_; }
   const BearingMesh& bearing_mesh() const { return mesh_; }
   const BearingModelOptions& options() const { return options_; }
-  int num_rollers() const { return static_cast<int>(roller_nodes_.size()); }
+  int num_rollers() const { return num_rollers_; }
+  bool hybrid() const { return hybrid_ != nullptr; }
+  // The rigid half of the hybrid model; nullptr in the FE model.
+  const HybridRollers* hybrid_rollers() const { return hybrid_.get(); }
 
   // Contact normal force on roller j (N, whole section) at the last step: magnitude of the
   // resultant of the pair's normal nodal forces. Cage: both pocket walls, summed.
@@ -86,6 +99,7 @@ class BearingModel {
   double RollerInnerForce(int j) const;
   double RollerCageForce(int j) const;
   BodyMotion RollerMotion(int j) const;
+  // FE model only (empty in the hybrid model: do not call).
   const contact::ContactPair& outer_pair(int j) const { return *outer_pairs_[j]; }
   const contact::ContactPair& inner_pair(int j) const { return *inner_pairs_[j]; }
   BodyMotion CageMotion() const;
@@ -107,6 +121,8 @@ class BearingModel {
   std::vector<std::unique_ptr<contact::ContactPair>> outer_pairs_, inner_pairs_, cage_pairs_;
   std::unique_ptr<RigidPart> cage_;
   std::unique_ptr<TiedNodes> tie_;
+  std::unique_ptr<HybridRollers> hybrid_;
+  int num_rollers_ = 0;
   std::vector<std::vector<int>> roller_nodes_;
   int shaft_body_ = -1;
   std::vector<SensorChannel> channels_;

@@ -464,6 +464,13 @@ Scene ParseScene(const std::string& toml_text,
     s.RejectUnknown();
   }
   {
+    Section s = top.Table("model");
+    scene.model.fidelity = s.String("fidelity", "fe");
+    if (scene.model.fidelity != "fe" && scene.model.fidelity != "hybrid")
+      s.Fail("fidelity", "expected \"fe\" or \"hybrid\", got \"" + scene.model.fidelity + "\"");
+    s.RejectUnknown();
+  }
+  {
     Section s = top.Table("mesh");
     scene.mesh.size_m = s.Number("size_mm", 0.25, {0.0, 5.0, true, false}) * kMm;
     scene.mesh.contact_size_m =
@@ -474,7 +481,8 @@ Scene ParseScene(const std::string& toml_text,
                                          {scene.mesh.size_m / kMm, 20.0}) *
                                 kMm;
     s.RejectUnknown();
-    for (std::size_t i = 0; i < scene.defects.size(); ++i) {
+    // The hybrid model's rollers are not meshed: their spalls are exact profiles.
+    for (std::size_t i = 0; scene.model.fidelity == "fe" && i < scene.defects.size(); ++i) {
       const auto& d = scene.defects[i];
       if (d.width_m < 1.5 * scene.mesh.contact_size_m || d.depth_m < scene.mesh.contact_size_m)
         s.Fail("contact_size_mm",

@@ -94,6 +94,15 @@ struct SceneRun {
   double output_rate_hz = 20000.0;
 };
 
+// Which model `spall simulate` builds (DESIGN.md "Fidelity ladder"):
+//  - "fe": every part meshed (level 4, the paper's model; sim/bearing/model_builder.h);
+//  - "hybrid": outer ring + adapter meshed, rollers / cage / inner ring rigid bodies with exact
+//    profiles and Palmgren contact (level 3, sim/bearing/hybrid_rollers.h). The mesh keys then
+//    apply to the outer ring and adapter only and need not resolve the spalls.
+struct SceneModel {
+  std::string fidelity = "fe";
+};
+
 struct SceneSolver {
   double time_step_safety = 0.9;       // fraction of the critical step
   int threads = 0;                     // 0: as many as OpenMP offers
@@ -109,6 +118,7 @@ struct Scene {
   SceneFriction friction;
   SceneDamping damping;
   SceneMesh mesh;
+  SceneModel model;
   std::vector<Sensor> sensors;
   std::vector<std::string> outputs;  // e.g. "contact_forces", "acceleration", "cage", "energy"
   SceneRun run;

@@ -1,0 +1,534 @@
+#include "sim/bearing/hybrid_rollers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <sstream>
+
+#include "core/error.h"
+#include "sim/quasistatic/harris_jones.h"
+
+namespace spallkit::sim {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr int kMaxKernel = 64;
+
+double Wrap(double a) {  // to (-pi, pi]
+  a = std::remainder(a, 2.0 * kPi);
+  return a;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// RollerProfile
+
+double RollerProfile::HalfAngle() const {
+  return spalled ? std::asin(std::min(1.0, 0.5 * width / radius)) : 0.0;
+}
+
+bool RollerProfile::InSpall(double a) const {
+  return spalled && std::abs(Wrap(a - angle)) < HalfAngle();
+}
+
+void RollerProfile::RimCorners(double cx[2], double cy[2]) const {
+  const double a = 0.5 * width;
+  const double s = std::sqrt(std::max(0.0, radius * radius - a * a));
+  const double c = std::cos(angle), sn = std::sin(angle);
+  // Spall frame: v along the spall direction (c, sn), u lateral (-sn, c).
+  for (int k = 0; k < 2; ++k) {
+    const double u = k == 0 ? a : -a;
+    cx[k] = s * c - u * sn;
+    cy[k] = s * sn + u * c;
+  }
+}
+
+double RollerProfile::Support(double a) const {
+  if (!InSpall(a)) return radius;
+  double cx[2], cy[2];
+  RimCorners(cx, cy);
+  const double ux = std::cos(a), uy = std::sin(a);
+  return std::max(cx[0] * ux + cy[0] * uy, cx[1] * ux + cy[1] * uy);
+}
+
+RollerProfile::Properties RollerProfile::SectionProperties() const {
+  const double r = radius;
+  Properties p;
+  double area = kPi * r * r, moment = 0.0, polar = 0.5 * kPi * r * r * r * r;
+  if (spalled) {
+    // Spall region in its own frame: v in [r - h, r], |u| < min(w/2, sqrt(r^2 - v^2)).
+    const int n = 20000;
+    const double v0 = r - depth, dv = depth / n;
+    double as = 0.0, ms = 0.0, is = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double v = v0 + (i + 0.5) * dv;
+      const double a = std::min(0.5 * width, std::sqrt(std::max(0.0, r * r - v * v)));
+      as += 2.0 * a * dv;
+      ms += 2.0 * a * v * dv;
+      is += (2.0 * a * v * v + 2.0 / 3.0 * a * a * a) * dv;
+    }
+    area -= as, moment -= ms, polar -= is;
+  }
+  const double vc = moment / area;  // along the spall direction
+  p.area = area;
+  p.cx = vc * std::cos(angle);
+  p.cy = vc * std::sin(angle);
+  p.polar = polar - area * vc * vc;
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------
+// HybridOptions
+
+bool HybridOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!(palmgren_coefficient > 0)) return fail("hybrid model: palmgren_coefficient must be > 0");
+  if (!(contact_damping_ratio >= 0 && contact_damping_ratio <= 1))
+    return fail("hybrid model: contact_damping_ratio must be in [0, 1]");
+  if (!(tangential_stiffness_ratio > 0))
+    return fail("hybrid model: tangential_stiffness_ratio must be > 0");
+  if (!(cage_stiffness_n_per_m > 0))
+    return fail("hybrid model: cage_stiffness_n_per_m must be > 0");
+  if (!(spread_half_width_m >= 0)) return fail("hybrid model: spread_half_width_m must be >= 0");
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// HybridRollers
+
+HybridRollers::HybridRollers(const Scene& scene,
+                             const BearingMesh& housing,
+                             const fe::NodalState& state,
+                             const HybridOptions& options,
+                             double load_ramp_s)
+    : scene_(scene), options_(options) {
+  std::string err;
+  if (!options_.IsValid(&err)) throw InputError(err);
+  const SceneGeometry& g = scene_.geometry;
+  const int z = g.bearing.num_elements;
+  const double t = g.thickness_m;
+  const double omega = scene_.operation.inner_ring_speed_rad_s;
+  const double ramp = scene_.operation.ramp_s;
+  angle_ = solver::RampedRotation(omega, ramp);
+  speed_ = solver::RampedSpeed(omega, ramp);
+  const double load = scene_.operation.radial_load_n;
+  load_ = [load, load_ramp_s](double tt) {
+    return load_ramp_s > 0 && tt < load_ramp_s ? -load * tt / load_ramp_s : -load;
+  };
+  outer_radius_ = housing.outer_raceway_radius_m;
+  inner_radius_ = housing.inner_raceway_radius_m;
+  pocket_half_width_ = 0.5 * (g.bearing.element_diameter_m + g.pocket_clearance_m);
+  k_c_ = PalmgrenContactStiffness(t, options_.palmgren_coefficient);
+
+  // Rollers: exact profiles, mass properties, initial pose (centred, pitch circle).
+  const double rho_r = scene_.materials.roller.density_kg_m3;
+  for (int j = 0; j < z; ++j) {
+    RollerProfile p;
+    p.radius = housing.roller_radius_m;
+    const double phi = housing.roller_angles_rad[j];
+    for (const Defect& d : scene_.defects)
+      if (d.roller == j) {
+        if (!(d.depth_m < p.radius) || !(d.width_m < 2.0 * p.radius))
+          throw InputError("defects: the spall of roller " + std::to_string(j) +
+                           " must be narrower than the roller diameter and shallower than its "
+                           "radius");
+        p.spalled = true, p.width = d.width_m, p.depth = d.depth_m, p.angle = phi + d.angle_rad;
+      }
+    const RollerProfile::Properties sp = p.SectionProperties();
+    profiles_.push_back(p);
+    roller_mass_.push_back(rho_r * t * sp.area);
+    roller_inertia_.push_back(rho_r * t * sp.polar);
+    centroid_x_.push_back(sp.cx);
+    centroid_y_.push_back(sp.cy);
+    pocket_angle_.push_back(phi);
+    Body b;
+    b.x = housing.pitch_radius_m * std::cos(phi) + sp.cx;
+    b.y = housing.pitch_radius_m * std::sin(phi) + sp.cy;
+    rollers_.push_back(b);
+  }
+
+  // Cage webs: the annulus minus the Z pockets (polar-grid quadrature).
+  {
+    const double rci = 0.5 * g.cage_inner_diameter_m, rco = 0.5 * g.cage_outer_diameter_m;
+    const int nr = 200, nt = 400 * z;
+    const double dr = (rco - rci) / nr, dth = 2 * kPi / nt;
+    double area = 0, polar = 0;
+    for (int i = 0; i < nr; ++i) {
+      const double r = rci + (i + 0.5) * dr;
+      for (int k = 0; k < nt; ++k) {
+        const double th = (k + 0.5) * dth;
+        const double rel = th - pocket_angle_[0];
+        const double d = Wrap(rel - 2 * kPi / z * std::round(rel / (2 * kPi / z)));
+        if (std::cos(d) > 0 && std::abs(r * std::sin(d)) < pocket_half_width_) continue;
+        area += r * dr * dth;
+        polar += r * r * r * dr * dth;
+      }
+    }
+    cage_mass_ = scene_.materials.cage.density_kg_m3 * t * area;
+    cage_inertia_ = scene_.materials.cage.density_kg_m3 * t * polar;
+  }
+  shaft_mass_ = scene_.materials.inner_ring.density_kg_m3 * t * kPi *
+                (inner_radius_ * inner_radius_ -
+                 0.25 * g.inner_ring_bore_diameter_m * g.inner_ring_bore_diameter_m);
+
+  // Outer raceway nodes, sorted by reference angle; uniform spacing required.
+  {
+    auto it = housing.mesh.curves.find("outer_ring.raceway");
+    if (it == housing.mesh.curves.end())
+      throw InputError("hybrid model: housing mesh has no 'outer_ring.raceway'");
+    std::vector<std::pair<double, int>> nodes;
+    for (int id : it->second.nodes)
+      nodes.emplace_back(std::atan2(housing.mesh.y[id], housing.mesh.x[id]), id);
+    std::sort(nodes.begin(), nodes.end());
+    const int n = static_cast<int>(nodes.size());
+    if (n < 8) throw InputError("hybrid model: outer raceway has fewer than 8 nodes");
+    ring_dtheta_ = 2 * kPi / n;
+    ring_theta0_ = nodes[0].first;
+    for (int k = 0; k < n; ++k) {
+      const double expect = ring_theta0_ + k * ring_dtheta_;
+      if (std::abs(nodes[k].first - expect) > 1e-6 * ring_dtheta_ + 1e-9)
+        throw InputError("hybrid model: outer raceway nodes are not uniformly spaced");
+      const int id = nodes[k].second;
+      ring_nodes_.push_back(id);
+      const double rr = std::hypot(housing.mesh.x[id], housing.mesh.y[id]);
+      ring_ex_.push_back(housing.mesh.x[id] / rr);
+      ring_ey_.push_back(housing.mesh.y[id] / rr);
+    }
+    const double spacing = outer_radius_ * ring_dtheta_;
+    spread_ = options_.spread_half_width_m > 0 ? options_.spread_half_width_m
+                                               : std::max(1e-3, 2.0 * spacing);
+    if (2 * static_cast<int>(std::ceil(spread_ / spacing)) + 1 > kMaxKernel)
+      throw InputError("hybrid model: spread_half_width_m covers more than 64 raceway nodes");
+  }
+
+  // Stable step of the contacts: stiffness at twice the radial load (a conservative bound),
+  // roller side (normal + tangential springs of both races on the roller's effective mass m/3)
+  // and ring-node side (largest kernel weight, damped oscillator limit).
+  {
+    const double q = 2.0 * std::max(load, 1000.0);
+    const double delta = std::pow(q / k_c_, 0.9);
+    const double kn = 10.0 / 9.0 * q / delta;
+    double m_min = roller_mass_[0];
+    for (double m : roller_mass_) m_min = std::min(m_min, m);
+    const double zeta = options_.contact_damping_ratio;
+    const double k_roller = 2.0 * kn * (1.0 + options_.tangential_stiffness_ratio);
+    const double w_roller = std::sqrt(k_roller / (m_min / 3.0));
+    double dt = 2.0 / w_roller * (std::sqrt(1 + zeta * zeta) - zeta);
+    int idx[kMaxKernel];
+    double w[kMaxKernel], w_max = 0;
+    for (int s = 0; s <= 10; ++s) {
+      const int n = Kernel(ring_theta0_ + 0.05 * s * ring_dtheta_, idx, w);
+      for (int i = 0; i < n; ++i) w_max = std::max(w_max, w[i]);
+    }
+    double node_mass = HUGE_VAL;
+    for (int id : ring_nodes_) node_mass = std::min(node_mass, state.mass[id]);
+    const double k_node = w_max * w_max * kn * (1.0 + options_.tangential_stiffness_ratio);
+    const double w_node = std::sqrt(k_node / node_mass);
+    const double zeta_node = zeta * std::sqrt(m_min / node_mass) * w_max;
+    dt = std::min(dt, 2.0 / w_node * (std::sqrt(1 + zeta_node * zeta_node) - zeta_node));
+    dt_limit_ = 0.5 * dt;
+  }
+
+  friction_.assign(4 * z, 0.0);
+  outer_force_.assign(z, 0.0);
+  inner_force_.assign(z, 0.0);
+  cage_force_.assign(z, 0.0);
+  fx_.assign(z, 0.0);
+  fy_.assign(z, 0.0);
+  torque_.assign(z, 0.0);
+}
+
+int HybridRollers::Kernel(double th, int* idx, double* w) const {
+  const int n = static_cast<int>(ring_nodes_.size());
+  const double spacing = outer_radius_ * ring_dtheta_;
+  const int m = static_cast<int>(std::ceil(spread_ / spacing));
+  const long k0 = std::lround((th - ring_theta0_) / ring_dtheta_);
+  int count = 0;
+  double sum = 0.0;
+  for (long k = k0 - m; k <= k0 + m; ++k) {
+    const double s = outer_radius_ * (ring_theta0_ + k * ring_dtheta_ - th) / spread_;
+    const double wk = 1.0 - s * s;
+    if (wk <= 0.0) continue;
+    idx[count] = static_cast<int>(((k % n) + n) % n);
+    w[count] = wk;
+    sum += wk;
+    ++count;
+  }
+  for (int i = 0; i < count; ++i) w[i] /= sum;
+  return count;
+}
+
+double HybridRollers::RaceRadius(const fe::NodalState& s, double th) const {
+  int idx[kMaxKernel];
+  double w[kMaxKernel];
+  const int n = Kernel(th, idx, w);
+  double u = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const int id = ring_nodes_[idx[i]];
+    u += w[i] * ((s.x[id] - s.x0[id]) * ring_ex_[idx[i]] + (s.y[id] - s.y0[id]) * ring_ey_[idx[i]]);
+  }
+  return outer_radius_ + u;
+}
+
+void HybridRollers::RollerCentre(int j, double* x, double* y) const {
+  const Body& b = rollers_[j];
+  const double c = std::cos(b.angle), s = std::sin(b.angle);
+  *x = b.x - (c * centroid_x_[j] - s * centroid_y_[j]);
+  *y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
+}
+
+int HybridRollers::RacePoints(int j, int which, Point out[2]) const {
+  // Positions only; the outer race radius is filled in by the caller (needs the nodal state).
+  const RollerProfile& p = profiles_[j];
+  const Body& b = rollers_[j];
+  double cx, cy;
+  RollerCentre(j, &cx, &cy);
+  double dx, dy;  // unit direction from the roller centre towards the race contact
+  if (which == 0) {
+    const double d = std::hypot(cx, cy);
+    dx = cx / d, dy = cy / d;
+  } else {
+    const double ex = shaft_.x - cx, ey = shaft_.y - cy, d = std::hypot(ex, ey);
+    dx = ex / d, dy = ey / d;
+  }
+  const double a = std::atan2(dy, dx) - b.angle;
+  if (!p.InSpall(a)) {
+    out[0] = {cx + p.radius * dx, cy + p.radius * dy, -dx, -dy, 0.0};
+    return 1;
+  }
+  double kx[2], ky[2];
+  p.RimCorners(kx, ky);
+  const double c = std::cos(b.angle), s = std::sin(b.angle);
+  for (int k = 0; k < 2; ++k)
+    out[k] = {cx + c * kx[k] - s * ky[k], cy + s * kx[k] + c * ky[k], -dx, -dy, 0.0};
+  return 2;
+}
+
+void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
+  const int z = num_rollers();
+  const double zeta = options_.contact_damping_ratio;
+  const double mu_s = scene_.friction.mu_static, mu_d = scene_.friction.mu_dynamic,
+               decay = scene_.friction.decay_s_m;
+  const double omega_s = speed_(t);
+  double shaft_fx = 0, shaft_fy = 0, shaft_torque = 0, cage_fx = 0, cage_fy = 0, cage_torque = 0;
+  double potential = 0.0;
+  std::fill(fx_.begin(), fx_.end(), 0.0);
+  std::fill(fy_.begin(), fy_.end(), 0.0);
+  std::fill(torque_.begin(), torque_.end(), 0.0);
+
+  // Counter bodies: 0 outer ring (FE nodes), 1 shaft, 2 cage.
+  auto counter_velocity = [&](int body, double px, double py, double* vx, double* vy) {
+    if (body == 0) {
+      int idx[kMaxKernel];
+      double w[kMaxKernel];
+      const int n = Kernel(std::atan2(py, px), idx, w);
+      *vx = *vy = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const int id = ring_nodes_[idx[i]];
+        *vx += w[i] * state.vx[id], *vy += w[i] * state.vy[id];
+      }
+    } else if (body == 1) {
+      *vx = shaft_.vx - omega_s * (py - shaft_.y);
+      *vy = shaft_.vy + omega_s * (px - shaft_.x);
+    } else {
+      *vx = cage_.vx - cage_.omega * (py - cage_.y);
+      *vy = cage_.vy + cage_.omega * (px - cage_.x);
+    }
+  };
+  auto apply_counter = [&](int body, double px, double py, double fx, double fy) {
+    if (body == 0) {
+      int idx[kMaxKernel];
+      double w[kMaxKernel];
+      const int n = Kernel(std::atan2(py, px), idx, w);
+      for (int i = 0; i < n; ++i) {
+        const int id = ring_nodes_[idx[i]];
+        state.fx[id] += w[i] * fx, state.fy[id] += w[i] * fy;
+      }
+    } else if (body == 1) {
+      shaft_fx += fx, shaft_fy += fy;
+      shaft_torque += (px - shaft_.x) * fy - (py - shaft_.y) * fx;
+    } else {
+      cage_fx += fx, cage_fy += fy;
+      cage_torque += (px - cage_.x) * fy - (py - cage_.y) * fx;
+    }
+  };
+
+  // One contact (1 or 2 points) of roller j with a counter body; returns the normal force.
+  auto contact = [&](int j, int body, bool palmgren, Point* pts, int npts, double* spring) {
+    const Body& b = rollers_[j];
+    const double m = roller_mass_[j];
+    double q[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0;
+    double tx = -pts[0].ny, ty = pts[0].nx;
+    for (int k = 0; k < npts; ++k) {
+      const Point& p = pts[k];
+      if (!(p.delta > 0)) continue;
+      double qe, kn;
+      if (palmgren) {
+        qe = k_c_ * std::pow(p.delta, 10.0 / 9.0);
+        kn = 10.0 / 9.0 * qe / p.delta;
+        potential += qe * p.delta * (9.0 / 19.0);
+      } else {
+        kn = options_.cage_stiffness_n_per_m;
+        qe = kn * p.delta;
+        potential += 0.5 * qe * p.delta;
+      }
+      double vx, vy;
+      counter_velocity(body, p.px, p.py, &vx, &vy);
+      const double rvx = b.vx - b.omega * (p.py - b.y) - vx;
+      const double rvy = b.vy + b.omega * (p.px - b.x) - vy;
+      const double rate = -(rvx * p.nx + rvy * p.ny);  // d delta / dt
+      const double c = 2.0 * zeta * std::sqrt(kn * m);
+      q[k] = std::max(0.0, qe + c * rate);
+      damping_work_ += (q[k] - qe) * rate * dt;
+      q_total += q[k];
+      kn_total += kn;
+      vt_acc += q[k] * (rvx * tx + rvy * ty);
+    }
+    if (!(q_total > 0)) {
+      *spring = 0.0;
+      return 0.0;
+    }
+    // Regularised Coulomb friction with a stick spring.
+    const double vt = vt_acc / q_total;
+    const double mu = mu_d + (mu_s - mu_d) * std::exp(-decay * std::abs(vt));
+    const double cap = mu * q_total;
+    const double kt = options_.tangential_stiffness_ratio * kn_total;
+    const double ct = 2.0 * zeta * std::sqrt(kt * m / 3.0);
+    const double fs = std::clamp(*spring - kt * vt * dt, -cap, cap);
+    const double f = std::clamp(fs - ct * vt, -cap, cap);
+    *spring = fs;
+    friction_work_ -= f * vt * dt;
+    for (int k = 0; k < npts; ++k) {
+      if (!(q[k] > 0)) continue;
+      const Point& p = pts[k];
+      const double ft = f * q[k] / q_total;
+      const double fx = q[k] * p.nx + ft * tx, fy = q[k] * p.ny + ft * ty;
+      fx_[j] += fx, fy_[j] += fy;
+      torque_[j] += (p.px - b.x) * fy - (p.py - b.y) * fx;
+      apply_counter(body, p.px, p.py, -fx, -fy);
+    }
+    return q_total;
+  };
+
+  const double cc = std::cos(cage_.angle), cs = std::sin(cage_.angle);
+  for (int j = 0; j < z; ++j) {
+    Point pts[2];
+    // Outer race.
+    int n = RacePoints(j, 0, pts);
+    for (int k = 0; k < n; ++k) {
+      const double th = std::atan2(pts[k].py, pts[k].px);
+      pts[k].delta = std::hypot(pts[k].px, pts[k].py) - RaceRadius(state, th);
+      if (n == 2) {  // the corners' own normals (race curvature)
+        const double d = std::hypot(pts[k].px, pts[k].py);
+        pts[k].nx = -pts[k].px / d, pts[k].ny = -pts[k].py / d;
+      }
+    }
+    outer_force_[j] = contact(j, 0, true, pts, n, &friction_[4 * j]);
+    // Inner race (rigid ring on the shaft).
+    n = RacePoints(j, 1, pts);
+    for (int k = 0; k < n; ++k) {
+      const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y, d = std::hypot(ex, ey);
+      pts[k].delta = inner_radius_ - d;
+      if (n == 2) pts[k].nx = ex / d, pts[k].ny = ey / d;
+    }
+    inner_force_[j] = contact(j, 1, true, pts, n, &friction_[4 * j + 1]);
+    // Cage pocket walls: straight lines +-W/2 from the pocket's centre line.
+    double cx, cy;
+    RollerCentre(j, &cx, &cy);
+    const double psi = pocket_angle_[j] + cage_.angle;
+    const double twx = -std::sin(psi), twy = std::cos(psi);
+    const double lateral = (cx - cage_.x) * twx + (cy - cage_.y) * twy;
+    const double a_lead = psi + 0.5 * kPi - rollers_[j].angle;
+    const double h_lead = profiles_[j].Support(a_lead);
+    const double h_trail = profiles_[j].Support(a_lead + kPi);
+    Point lead{
+        cx + h_lead * twx, cy + h_lead * twy, -twx, -twy, lateral + h_lead - pocket_half_width_};
+    Point trail{
+        cx - h_trail * twx, cy - h_trail * twy, twx, twy, -lateral + h_trail - pocket_half_width_};
+    (void)cc, (void)cs;
+    cage_force_[j] = contact(j, 2, false, &lead, 1, &friction_[4 * j + 2]) +
+                     contact(j, 2, false, &trail, 1, &friction_[4 * j + 3]);
+  }
+  potential_ = potential;
+
+  // Central-difference update of the rigid bodies (the solver's scheme and step).
+  const double dt_avg = 0.5 * (dt_prev_ + dt);
+  double kinetic = 0.0;
+  for (int j = 0; j < z; ++j) {
+    Body& b = rollers_[j];
+    b.vx += dt_avg * fx_[j] / roller_mass_[j];
+    b.vy += dt_avg * fy_[j] / roller_mass_[j];
+    b.omega += dt_avg * torque_[j] / roller_inertia_[j];
+    b.x += dt * b.vx, b.y += dt * b.vy, b.angle += dt * b.omega;
+    kinetic += 0.5 * roller_mass_[j] * (b.vx * b.vx + b.vy * b.vy) +
+               0.5 * roller_inertia_[j] * b.omega * b.omega;
+  }
+  cage_.vx += dt_avg * cage_fx / cage_mass_;
+  cage_.vy += dt_avg * cage_fy / cage_mass_;
+  cage_.omega += dt_avg * cage_torque / cage_inertia_;
+  cage_.x += dt * cage_.vx, cage_.y += dt * cage_.vy, cage_.angle += dt * cage_.omega;
+  kinetic += 0.5 * cage_mass_ * (cage_.vx * cage_.vx + cage_.vy * cage_.vy) +
+             0.5 * cage_inertia_ * cage_.omega * cage_.omega;
+  const double load = load_(t);
+  const double vy_old = shaft_.vy;
+  shaft_.vx += dt_avg * shaft_fx / shaft_mass_;
+  shaft_.vy += dt_avg * (shaft_fy + load) / shaft_mass_;
+  shaft_.x += dt * shaft_.vx, shaft_.y += dt * shaft_.vy;
+  shaft_.angle = angle_(t + dt);
+  shaft_.omega = speed_(t + 0.5 * dt);
+  kinetic += 0.5 * shaft_mass_ * (shaft_.vx * shaft_.vx + shaft_.vy * shaft_.vy);
+  kinetic_ = kinetic;
+  // Load work over the half steps around t^n; drive torque = -(contact torque on the shaft).
+  external_work_ += load * dt_avg * 0.5 * (vy_old + shaft_.vy);
+  external_work_ += -shaft_torque * omega_s * dt_avg;
+  dt_prev_ = dt;
+}
+
+double HybridRollers::StableTimeStep(const fe::NodalState& /*state*/) const { return dt_limit_; }
+
+std::string HybridRollers::SaveState() const {
+  std::vector<double> v;
+  auto put_body = [&](const Body& b) {
+    for (double x : {b.x, b.y, b.angle, b.vx, b.vy, b.omega}) v.push_back(x);
+  };
+  for (const Body& b : rollers_) put_body(b);
+  put_body(cage_);
+  put_body(shaft_);
+  v.insert(v.end(), friction_.begin(), friction_.end());
+  v.insert(v.end(), outer_force_.begin(), outer_force_.end());
+  v.insert(v.end(), inner_force_.begin(), inner_force_.end());
+  v.insert(v.end(), cage_force_.begin(), cage_force_.end());
+  for (double x : {dt_prev_, potential_, kinetic_, friction_work_, damping_work_, external_work_})
+    v.push_back(x);
+  return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+}
+
+void HybridRollers::LoadState(const std::string& bytes) {
+  const size_t z = rollers_.size();
+  const size_t n = 6 * (z + 2) + 4 * z + 3 * z + 6;
+  if (bytes.size() != n * sizeof(double))
+    throw InputError("hybrid_rollers: checkpoint state has the wrong size");
+  std::vector<double> v(n);
+  std::memcpy(v.data(), bytes.data(), bytes.size());
+  size_t i = 0;
+  auto get_body = [&](Body* b) {
+    for (double* x : {&b->x, &b->y, &b->angle, &b->vx, &b->vy, &b->omega}) *x = v[i++];
+  };
+  for (Body& b : rollers_) get_body(&b);
+  get_body(&cage_);
+  get_body(&shaft_);
+  for (double& x : friction_) x = v[i++];
+  for (double& x : outer_force_) x = v[i++];
+  for (double& x : inner_force_) x = v[i++];
+  for (double& x : cage_force_) x = v[i++];
+  for (double* x :
+       {&dt_prev_, &potential_, &kinetic_, &friction_work_, &damping_work_, &external_work_})
+    *x = v[i++];
+}
+
+}  // namespace spallkit::sim
