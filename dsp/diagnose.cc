@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "dsp/fft.h"
 #include "dsp/prewhiten.h"
 
 namespace spallkit::dsp {
@@ -23,6 +26,7 @@ bool DiagnoseOptions::IsValid(std::string* error) const {
   if (!(false_alarm_probability > 0.0 && false_alarm_probability < 1.0))
     return fail("false-alarm probability must be in (0, 1)");
   if (kurtogram_max_level < 0) return fail("kurtogram level must be >= 0");
+  if (max_bands < 0) return fail("max bands must be >= 0 (0 = all candidates)");
   if (floor_window_bins < 21) return fail("floor window must be >= 21 bins");
   if (!(line_p_value > 0.0 && line_p_value < 1.0)) return fail("line p-value must be in (0, 1)");
   if (!(min_modulation >= 0.0 && min_modulation < 10.0))
@@ -80,11 +84,67 @@ double NeededAlpha(const std::vector<FaultFamily>& families, double max_scale) {
 
 struct BandResult {
   KurtogramNode node;
-  EnvelopeSpectrum ses;
+  int envelope_size = 0;  // m, the decimated envelope's length (for the reported SES)
   NormalizedSpectrum normalized;
   std::vector<FamilyDetection> detections;
   double best_p = 1.0;
 };
+
+// SES power P(alpha) = |FFT(SE - mean)|^2 / m^2 of one band, alpha = 0 .. max_alpha_hz: the
+// EnvelopeAnalyzer's SES squared (its level is |FFT(SE - mean)| / m), formed from the transform
+// directly. Why not analyzer.Compute(): its |X| is a hypot per bin, which cost as much as both
+// transforms of a candidate band, and the detection only needs |X|^2. The real FFTs (one per
+// decimated size) are kept across bands.
+class BandPower {
+ public:
+  explicit BandPower(EnvelopeAnalyzer* analyzer) : analyzer_(analyzer) {}
+
+  std::vector<double> Compute(const Band& band, double max_alpha_hz, int* envelope_size) {
+    double rate_hz = 0.0;
+    std::vector<double> se = analyzer_->SquaredEnvelope(band, max_alpha_hz, &rate_hz);
+    const int m = static_cast<int>(se.size());
+    *envelope_size = m;
+    double sum = 0.0;
+    for (double v : se) sum += v;
+    const double mean = sum / m;
+    for (double& v : se) v -= mean;
+    auto& fft = ffts_[m];
+    if (!fft) fft = std::make_unique<RealFft>(m);
+    spectrum_.resize(m / 2 + 1);
+    fft->Forward(se.data(), spectrum_.data());
+    const double df = analyzer_->resolution_hz();
+    const double nyquist = 0.5 * analyzer_->sample_rate_hz();
+    // Bins as in EnvelopeAnalyzer::Compute: floor(min(max_alpha, fs/2) / df).
+    const int bins = static_cast<int>(std::floor(std::min(max_alpha_hz, nyquist) / df + 1e-9)) + 1;
+    std::vector<double> power(bins);
+    const double inv_m2 = 1.0 / (double(m) * double(m));
+    for (int k = 0; k < bins; ++k) power[k] = std::norm(spectrum_[k]) * inv_m2;
+    power[0] = 0.0;  // mean removed
+    return power;
+  }
+
+ private:
+  EnvelopeAnalyzer* analyzer_;
+  std::map<int, std::unique_ptr<RealFft>> ffts_;
+  std::vector<std::complex<double>> spectrum_;
+};
+
+// The candidates to search: all of them, or the max_bands of highest spectral kurtosis (kept in
+// the kurtogram's order, which the band comparison's tie rule follows).
+std::vector<KurtogramNode> StrongestBands(const std::vector<KurtogramNode>& candidates,
+                                          int max_bands) {
+  if (max_bands <= 0 || static_cast<int>(candidates.size()) <= max_bands) return candidates;
+  std::vector<int> order(candidates.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return candidates[a].kurtosis > candidates[b].kurtosis;
+  });
+  order.resize(max_bands);
+  std::sort(order.begin(), order.end());
+  std::vector<KurtogramNode> out;
+  for (int i : order) out.push_back(candidates[i]);
+  return out;
+}
 
 // Mean of the squared envelope |c|^2 of a band, in the SES level's units: with the
 // EnvelopeAnalyzer scaling (a sine of amplitude A gives SE = A^2) it is twice the band's
@@ -229,6 +289,8 @@ Diagnosis Diagnose(const Record& record,
   if (candidates.empty())
     throw InputError("diagnose: no demodulation band of width >= " + Fmt("%.0f", alpha_need) +
                      " Hz fits below fs/2 = " + Fmt("%.0f", 0.5 * fs) + " Hz");
+  d.eligible_bands = static_cast<int>(candidates.size());
+  candidates = StrongestBands(candidates, options.max_bands);
   d.candidate_bands = static_cast<int>(candidates.size());
   d.multiplicity = double(kFamilies) * d.candidate_bands;
 
@@ -247,19 +309,17 @@ Diagnosis Diagnose(const Record& record,
   }
 
   const int floor_half = options.floor_window_bins / 2 + 2;
+  BandPower band_power(&analyzer);
   std::optional<BandResult> best;
   std::optional<BandResult> kurt_choice;
   bool kurt_choice_is_best = false;
   for (const auto& node : candidates) {
     BandResult r;
     r.node = node;
-    EnvelopeOptions eopt;
     const Band band = node.band();
-    eopt.max_alpha_hz = std::min(band.width_hz(), alpha_need + floor_half * df);
-    r.ses = analyzer.Compute(band, eopt);
-    std::vector<double> power(r.ses.level.size());
-    for (size_t i = 0; i < power.size(); ++i) power[i] = r.ses.level[i] * r.ses.level[i];
-    r.normalized = NormalizeSpectrum(power, r.ses.resolution_hz, dopt);
+    const double max_alpha = std::min(band.width_hz(), alpha_need + floor_half * df);
+    const std::vector<double> power = band_power.Compute(band, max_alpha, &r.envelope_size);
+    r.normalized = NormalizeSpectrum(power, df, dopt);
     r.normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
     // Cage first: when its comb is detected, its harmonics are non-evidence for the inner race
     // and rolling element (f_b ~ 11.8 f_c for a 6205).
@@ -275,12 +335,18 @@ Diagnosis Diagnose(const Record& record,
     const bool is_kurtogram_best =
         std::abs(node.center_hz - d.kurtogram.best.center_hz) < 1e-9 &&
         std::abs(node.bandwidth_hz - d.kurtogram.best.bandwidth_hz) < 1e-9;
-    if (!best || BandKey(r) > BandKey(*best)) best = r;
-    if (!kurt_choice || (!kurt_choice_is_best &&
-                         (is_kurtogram_best || node.kurtosis > kurt_choice->node.kurtosis))) {
-      kurt_choice = r;
+    const bool becomes_best = !best || BandKey(r) > BandKey(*best);
+    const bool becomes_kurt_choice =
+        !kurt_choice ||
+        (!kurt_choice_is_best && (is_kurtogram_best || node.kurtosis > kurt_choice->node.kurtosis));
+    if (becomes_kurt_choice) {
       kurt_choice_is_best = is_kurtogram_best;
+      if (becomes_best)
+        kurt_choice = r;  // a copy: both keep it
+      else
+        kurt_choice = std::move(r);
     }
+    if (becomes_best) best = std::move(r);
   }
 
   // Without any significant comb, report the band the kurtogram prefers (among candidates).
@@ -298,7 +364,18 @@ Diagnosis Diagnose(const Record& record,
   d.band = chosen.node.band();
   d.band_kurtosis = chosen.node.kurtosis;
   d.band_level = chosen.node.level;
-  d.ses = std::move(chosen.ses);
+  // The reported SES is the chosen band's: level = sqrt(P), as EnvelopeAnalyzer::Compute gives it.
+  d.ses.resolution_hz = df;
+  d.ses.band = d.band;
+  d.ses.squared = true;
+  d.ses.envelope_rate_hz = chosen.envelope_size * df;
+  const auto& chosen_power = chosen.normalized.power;
+  d.ses.freq_hz.resize(chosen_power.size());
+  d.ses.level.resize(chosen_power.size());
+  for (size_t k = 0; k < chosen_power.size(); ++k) {
+    d.ses.freq_hz[k] = k * df;
+    d.ses.level[k] = std::sqrt(chosen_power[k]);
+  }
   d.normalized = std::move(chosen.normalized);
   d.faults = std::move(chosen.detections);
 
@@ -418,7 +495,8 @@ std::string Diagnosis::ToJson(int indent) const {
                {"kurtogram_level", band_level},
                {"kurtosis", band_kurtosis},
                {"selection", band_selection},
-               {"candidates", candidate_bands}};
+               {"candidates", candidate_bands},
+               {"eligible", eligible_bands}};
   j["kurtogram"] = {{"best_center_hz", kurtogram_best.center_hz},
                     {"best_bandwidth_hz", kurtogram_best.bandwidth_hz},
                     {"best_level", kurtogram_best.level},

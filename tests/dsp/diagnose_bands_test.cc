@@ -1,0 +1,103 @@
+// Candidate-band limit (DiagnoseOptions::max_bands): at 48 kHz the width rule admits 64 kurtogram
+// nodes and the diagnosis searches the 16 of highest spectral kurtosis. The false-alarm design
+// must hold with the smaller Bonferroni factor (4 families x 16 bands) on records where the
+// selection is active, and a fault must be found as with every band searched.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/bearing.h"
+#include "dsp/diagnose.h"
+#include "tests/dsp/diagnose_test_signals.h"
+
+namespace spallkit::dsp {
+namespace {
+
+using spallkit::testing::FaultSignalSpec;
+using spallkit::testing::MakeFaultSignal;
+
+Record MakeRecord(const FaultSignalSpec& spec) {
+  Record r;
+  r.samples = MakeFaultSignal(spec);
+  r.sample_rate_hz = spec.fs_hz;
+  return r;
+}
+
+TEST(DiagnoseBands, SearchesTheHighestKurtosisBandsOnly) {
+  const BearingGeometry g = CatalogBearing("6205");
+  const BearingFrequencies f = ComputeFrequencies(g, 29.95);
+  FaultSignalSpec s;
+  s.fs_hz = 48000;
+  s.duration_s = 2.0;
+  s.rate_hz = f.bpfo_hz * 0.99;
+  s.resonance_hz = 12000;
+  s.amplitude = 3.0;
+  s.noise_rms = 0.4;
+  s.shaft_hz = f.shaft_hz;
+  s.shaft_amplitude = 0.5;
+  s.mains_amplitude = 0.2;
+  const Record r = MakeRecord(s);
+  const Diagnosis limited = Diagnose(r, g, f.shaft_hz);
+  DiagnoseOptions all;
+  all.max_bands = 0;
+  const Diagnosis full = Diagnose(r, g, f.shaft_hz, all);
+  SCOPED_TRACE(limited.BriefReport() + full.BriefReport());
+  EXPECT_EQ(full.eligible_bands, 64);
+  EXPECT_EQ(full.candidate_bands, 64);
+  EXPECT_EQ(limited.eligible_bands, 64);
+  EXPECT_EQ(limited.candidate_bands, 16);
+  EXPECT_DOUBLE_EQ(limited.multiplicity, 4.0 * 16);
+  // The searched bands are the most impulsive: the chosen band holds the resonance.
+  EXPECT_LE(limited.band.low_hz, 12000.0);
+  EXPECT_GE(limited.band.high_hz, 12000.0);
+  EXPECT_EQ(limited.verdict, "outer_race");
+  EXPECT_EQ(full.verdict, "outer_race");
+  ASSERT_NE(limited.Best(), nullptr);
+  EXPECT_NEAR(limited.Best()->fundamental_hz / s.rate_hz, 1.0, 1e-3);
+  // Fewer tests, smaller correction: the same comb is at least as significant.
+  EXPECT_LE(limited.Best()->p_value, full.Best()->p_value * (1 + 1e-9));
+}
+
+// As Diagnose.HealthyRecordsFalseAlarmRateWithinDesign, at 48 kHz where the band limit is active
+// (64 eligible nodes, 16 searched): choosing bands by kurtosis (the envelope's amplitude
+// distribution) must not inflate the comb statistics (z = P / local floor, scale-free).
+TEST(DiagnoseBands, HealthyRecordsAt48kHzFalseAlarmRateWithinDesign) {
+  const BearingGeometry g = CatalogBearing("6205");
+  const BearingFrequencies f = ComputeFrequencies(g, 29.95);
+  const int kRecords = 60;
+  for (double alpha : {0.2, 1e-3}) {
+    int alarms = 0, alarms_lines = 0, searched = 0;
+    DiagnoseOptions o;
+    o.false_alarm_probability = alpha;
+    for (int seed = 1; seed <= kRecords; ++seed) {
+      FaultSignalSpec s;
+      s.fs_hz = 48000;
+      s.duration_s = 0.5;
+      s.noise_rms = 1.0;
+      s.seed = 7000 + seed;
+      const Diagnosis d = Diagnose(MakeRecord(s), g, f.shaft_hz, o);
+      if (d.verdict != "healthy") ++alarms;
+      searched = d.candidate_bands;
+      FaultSignalSpec t = s;
+      t.seed = 9000 + seed;
+      t.noise_rms = 0.4;
+      t.shaft_hz = f.shaft_hz;
+      t.shaft_amplitude = 0.5;
+      t.mains_amplitude = 0.2;
+      t.extra_line_hz = f.bpfo_hz;
+      t.extra_line_amplitude = 0.3;
+      if (Diagnose(MakeRecord(t), g, f.shaft_hz, o).verdict != "healthy") ++alarms_lines;
+    }
+    EXPECT_EQ(searched, 16);
+    const double margin = 3.0 * std::sqrt(alpha * (1 - alpha) / kRecords);
+    EXPECT_LE(alarms / double(kRecords), alpha + margin) << "alpha " << alpha;
+    EXPECT_LE(alarms_lines / double(kRecords), alpha + margin) << "alpha " << alpha;
+    if (alpha < 0.01) {
+      EXPECT_EQ(alarms, 0);
+      EXPECT_EQ(alarms_lines, 0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace spallkit::dsp
