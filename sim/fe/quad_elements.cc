@@ -32,6 +32,11 @@ void ReadVec(std::istream& in, std::vector<T>* v, const char* what) {
   if (!in) throw InputError(std::string("checkpoint: truncated element array '") + what + "'");
 }
 
+// By value (std::max returns a reference, which GCC vectorises as a select of addresses plus a
+// gather from the stack).
+inline double Max(double a, double b) { return a > b ? a : b; }
+inline double Min(double a, double b) { return a < b ? a : b; }
+
 }  // namespace
 
 QuadElements::QuadElements(const Mesh& mesh, std::vector<Section> sections)
@@ -56,8 +61,9 @@ QuadElements::QuadElements(const Mesh& mesh, std::vector<Section> sections)
     n4_[e] = mesh.quads[e][3];
   }
   for (auto* v : {&sxx_, &syy_, &sxy_, &szz_, &qx_, &qy_}) v->assign(ne, 0.0);
-  fcx_.assign(4 * static_cast<size_t>(ne), 0.0);
-  fcy_.assign(4 * static_cast<size_t>(ne), 0.0);
+  // One extra slot that stays 0: the padding target of the 4-slot gather table.
+  fcx_.assign(4 * static_cast<size_t>(ne) + 1, 0.0);
+  fcy_.assign(4 * static_cast<size_t>(ne) + 1, 0.0);
 
   // Blocks: runs of at most kBlockSize consecutive elements of one part.
   for (int e = 0; e < ne;) {
@@ -83,6 +89,20 @@ QuadElements::QuadElements(const Mesh& mesh, std::vector<Section> sections)
     for (int e = 0; e < ne; ++e) node_slots_[fill[mesh.quads[e][c]]++] = c * ne + e;
   for (int i = 0; i < num_nodes_; ++i)
     std::sort(node_slots_.begin() + node_ptr_[i], node_slots_.begin() + node_ptr_[i + 1]);
+  // Fixed-width gather table: the first 4 slots of every node (padded with the zero slot), and
+  // the rare further slots (nodes shared by more than 4 elements) in a short overflow list.
+  const int zero_slot = 4 * ne;
+  gather4_.assign(4 * static_cast<size_t>(num_nodes_), zero_slot);
+  for (int i = 0; i < num_nodes_; ++i) {
+    for (int k = node_ptr_[i]; k < node_ptr_[i + 1]; ++k) {
+      if (k - node_ptr_[i] < 4) {
+        gather4_[4 * static_cast<size_t>(i) + (k - node_ptr_[i])] = node_slots_[k];
+      } else {
+        overflow_node_.push_back(i);
+        overflow_slot_.push_back(node_slots_[k]);
+      }
+    }
+  }
 }
 
 const std::vector<int>& QuadElements::connectivity(int corner) const {
@@ -202,14 +222,13 @@ double QuadElements::BlockKernel(
     dint += t * area_m * (0.5 * (rxx + n_xx) * dxx + 0.5 * (ryy + n_yy) * dyy + (rxy + n_xy) * dxy);
 
     // --- Stable step on the current geometry: (c / L_e)^2 = c^2 lmax / A^2.
-    min_area = std::min(min_area, two_a > 0.0 ? two_a : -1.0);  // NaN counts as inverted
+    min_area = Min(min_area, two_a > 0.0 ? two_a : -1.0);  // NaN counts as inverted
     const double x21 = x2 - x1, y21 = y2 - y1, x32 = x3 - x2, y32 = y3 - y2;
     const double x43 = x4 - x3, y43 = y4 - y3, x14 = x1 - x4, y14 = y1 - y4;
     const double d13 = x31 * x31 + y31 * y31, d24 = x42 * x42 + y42 * y42;
-    const double lmax = std::max(
-        std::max(std::max(d13, d24), std::max(x21 * x21 + y21 * y21, x32 * x32 + y32 * y32)),
-        std::max(x43 * x43 + y43 * y43, x14 * x14 + y14 * y14));
-    inv_dt2_max = std::max(inv_dt2_max, c2_wave_sq * lmax * (inv_a2 * inv_a2));
+    const double lmax = Max(Max(Max(d13, d24), Max(x21 * x21 + y21 * y21, x32 * x32 + y32 * y32)),
+                            Max(x43 * x43 + y43 * y43, x14 * x14 + y14 * y14));
+    inv_dt2_max = Max(inv_dt2_max, c2_wave_sq * lmax * (inv_a2 * inv_a2));
 
     double fxx = n_xx, fyy = n_yy, fxy = n_xy;  // stress that makes the force
     if constexpr (kStiffDamp) {
@@ -310,16 +329,25 @@ double QuadElements::ComputeForces(NodalState* s, double dt_prev, int threads) {
 }
 
 void QuadElements::GatherForces(NodalState* s, int begin, int end) const {
-  const int* __restrict ptr = node_ptr_.data();
-  const int* __restrict slots = node_slots_.data();
+  const int* __restrict g = gather4_.data();
   const double* __restrict fcx = fcx_.data();
   const double* __restrict fcy = fcy_.data();
   double* __restrict fx = s->fx.data();
   double* __restrict fy = s->fy.data();
+  // Same sum, in the same (ascending slot) order, as a loop over the node's slots: branch-free.
   for (int i = begin; i < end; ++i) {
-    double ax = 0.0, ay = 0.0;
-    for (int k = ptr[i]; k < ptr[i + 1]; ++k) ax -= fcx[slots[k]], ay -= fcy[slots[k]];
-    fx[i] = ax, fy[i] = ay;
+    const int* gi = g + 4 * static_cast<size_t>(i);
+    fx[i] = -(((fcx[gi[0]] + fcx[gi[1]]) + fcx[gi[2]]) + fcx[gi[3]]);
+    fy[i] = -(((fcy[gi[0]] + fcy[gi[1]]) + fcy[gi[2]]) + fcy[gi[3]]);
+  }
+  if (overflow_node_.empty()) return;
+  const auto first = std::lower_bound(overflow_node_.begin(), overflow_node_.end(), begin);
+  for (auto k = static_cast<size_t>(first - overflow_node_.begin());
+       k < overflow_node_.size() && overflow_node_[k] < end;
+       ++k) {
+    const int i = overflow_node_[k];
+    fx[i] -= fcx[overflow_slot_[k]];
+    fy[i] -= fcy[overflow_slot_[k]];
   }
 }
 

@@ -114,11 +114,13 @@ class QuadElements {
   std::vector<Section> sections_;
   std::vector<Block> blocks_;
   std::vector<int> part_;
-  std::vector<int> n1_, n2_, n3_, n4_;                     // connectivity, SoA
-  std::vector<double> sxx_, syy_, sxy_, szz_;              // stress
-  std::vector<double> qx_, qy_;                            // hourglass generalized forces
-  std::vector<double> fcx_, fcy_;                          // corner forces, [corner * ne + e]
-  std::vector<int> node_ptr_, node_slots_;                 // CSR node -> corner slots, ascending
+  std::vector<int> n1_, n2_, n3_, n4_;         // connectivity, SoA
+  std::vector<double> sxx_, syy_, sxy_, szz_;  // stress
+  std::vector<double> qx_, qy_;                // hourglass generalized forces
+  std::vector<double> fcx_, fcy_;              // corner forces, [corner * ne + e]
+  std::vector<int> node_ptr_, node_slots_;     // CSR node -> corner slots, ascending
+  std::vector<int> gather4_;  // per node its first 4 slots, padded with the zero slot 4 * ne
+  std::vector<int> overflow_node_, overflow_slot_;         // slots 5, 6, ... (node ascending)
   std::vector<double> block_int_, block_hg_, block_damp_;  // cumulative energies per block
   std::vector<double> block_inv_dt_, block_min_area_;      // per-pass scratch ((c/L_e)^2)
   double beta_ = 0.0;

@@ -10,6 +10,7 @@
 //    stiffness damping shortens it by sqrt(1 + xi^2) - xi.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -151,6 +152,38 @@ TEST(FePerf, StableStepOfASquareIsSideOverRootTwoOverWaveSpeed) {
   el.set_stiffness_damping(beta);
   EXPECT_NEAR(
       el.ComputeCornerForces(s, 0.0, 1), dt_e * (std::sqrt(1.0 + xi * xi) - xi), 1e-14 * dt_e);
+}
+
+TEST(FePerf, GatherCountsNodesSharedByMoreThanFourElements) {
+  // Six quads around a centre node (valence 6: two slots go through the overflow list).
+  fe::Mesh mesh;
+  mesh.x = {0.0}, mesh.y = {0.0};
+  const double kPi = 3.14159265358979323846;
+  for (int k = 0; k < 12; ++k)
+    mesh.x.push_back(1e-3 * std::cos(kPi * k / 6)), mesh.y.push_back(1e-3 * std::sin(kPi * k / 6));
+  for (int q = 0; q < 6; ++q) {
+    mesh.quads.push_back({0, 1 + 2 * q, 2 + 2 * q, 1 + (2 * q + 2) % 12});
+    mesh.element_part.push_back(0);
+  }
+  mesh.part_names = {"star"};
+  fe::QuadElements el(mesh, {fe::Section{}});
+  fe::NodalState s;
+  s.Resize(mesh.num_nodes());
+  s.x0 = s.x = mesh.x, s.y0 = s.y = mesh.y;
+  for (int i = 0; i < mesh.num_nodes(); ++i)
+    s.vx[i] = 0.5 * mesh.y[i] / 1e-3 + 0.2 * (i % 3), s.vy[i] = 0.3 * (i % 2) - 0.1 * (i % 5);
+  el.ComputeForces(&s, 0.0, 1);
+  for (int i = 0; i < mesh.num_nodes(); ++i) s.x[i] += 1e-8 * s.vx[i], s.y[i] += 1e-8 * s.vy[i];
+  el.ComputeForces(&s, 1e-8, 1);
+  // Internal forces are self-equilibrated: they sum to zero only if every corner is gathered.
+  double sx = 0.0, sy = 0.0, scale = 0.0;
+  for (int i = 0; i < mesh.num_nodes(); ++i)
+    sx += s.fx[i], sy += s.fy[i], scale = std::max(scale, std::abs(s.fx[i]) + std::abs(s.fy[i]));
+  ASSERT_GT(scale, 0.0);
+  EXPECT_NEAR(sx, 0.0, 1e-12 * scale);
+  EXPECT_NEAR(sy, 0.0, 1e-12 * scale);
+  // The centre node's force is a real sum over six elements, not four.
+  EXPECT_GT(std::abs(s.fx[0]) + std::abs(s.fy[0]), 1e-6 * scale);
 }
 
 }  // namespace
