@@ -276,84 +276,96 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
   const int grid = std::max(1, static_cast<int>(std::ceil((s_hi - s_lo) / ds)) + 1);
 
   // -ln p of the larger of bins (i, i+1), capped: computed on first use (three transcendentals a
-  // bin), so only the bins some line's search window visits are paid for.
-  std::vector<double> pair_score(nbins, -1.0);  // < 0: not computed yet
+  // bin), so only the bins some line's search window visits are paid for. The table spans the
+  // family's bins only.
+  double f_low = std::numeric_limits<double>::infinity();
+  for (const auto& l : family.lines) f_low = std::min(f_low, l.nominal_hz);
+  const int i_lo = std::clamp(static_cast<int>(std::floor(f_low * s_lo / df)) - 2, 0, nbins - 1);
+  const int i_hi = std::clamp(static_cast<int>(std::ceil(f_top / df)) + 2, i_lo, nbins - 1);
+  std::vector<double> pair_score(i_hi - i_lo + 1, -1.0);  // < 0: not computed yet
+  auto pair_score_of = [&](int i) {
+    const double p = spectrum.PairPValue(std::max(spectrum.z[i], spectrum.z[i + 1]));
+    return std::min(-std::log(std::max(p, 1e-300)), options.max_line_score);
+  };
   auto score_at = [&](int i) {
-    double& score = pair_score[i];
-    if (score < 0.0) {
-      const double p = spectrum.PairPValue(std::max(spectrum.z[i], spectrum.z[i + 1]));
-      score = std::min(-std::log(std::max(p, 1e-300)), options.max_line_score);
-    }
+    if (i < i_lo || i > i_hi) return pair_score_of(i);
+    double& score = pair_score[i - i_lo];
+    if (score < 0.0) score = pair_score_of(i);
     return score;
   };
-  // excluded_at() for the grid walk without a division per harmonic test: each base's
-  // reciprocal is formed once (per grid point for the comb-speed shaft lines). Multiplying by it
-  // can move f/base by an ulp, which changes the rounded harmonic number only at a half-way point,
-  // where both neighbours are base/2 away, far outside any guard: the decisions are the same.
-  struct Base {
-    double hz, inv;
-  };
-  std::vector<Base> fixed_bases;  // harmonics that do not move with s
-  auto add_base = [&](double hz) {
-    if (hz > 0.0) fixed_bases.push_back({hz, 1.0 / hz});
-  };
+
+  // The walk over s is done line by line over the whole grid, so each step is a short loop the
+  // compiler vectorises: f, the guard, the bin, the exclusion tests (as in excluded_at(), with
+  // each base's reciprocal formed once: multiplying by it can move f/base by an ulp, which
+  // changes the rounded harmonic number only at a half-way point, where both neighbours are
+  // base/2 away, far outside any guard, so the decisions are the same). The comb score of grid
+  // point g sums its lines in line order, as a point-by-point walk would.
+  std::vector<double> s_grid(grid), comb_hz(grid), comb_inv(grid);
+  for (int g = 0; g < grid; ++g) {
+    s_grid[g] = grid == 1 ? c : s_lo + (s_hi - s_lo) * g / double(grid - 1);
+    comb_hz[g] = shaft_base * s_grid[g];
+    comb_inv[g] = 1.0 / comb_hz[g];
+  }
+  std::vector<double> fixed_bases;  // harmonics that do not move with s
   if (context.exclude_shaft)
-    add_base(context.measured_shaft_scale > 0.0 ? shaft_base * context.measured_shaft_scale
-                                                : shaft_base);
+    fixed_bases.push_back(context.measured_shaft_scale > 0.0
+                              ? shaft_base * context.measured_shaft_scale
+                              : shaft_base);
   if (context.exclude_mains)
-    for (double mains : options.mains_hz) add_base(mains);
-  for (double base : context.exclude_harmonics_of_hz) add_base(base);
-  auto near_harmonic = [](double f, const Base& b, double guard) {
-    const double m = std::max(1.0, std::nearbyint(f * b.inv));
-    return std::abs(f - m * b.hz) <= guard;
-  };
-  std::vector<double> nominal(nl);
-  for (int l = 0; l < nl; ++l) nominal[l] = family.lines[l].nominal_hz;
+    for (double mains : options.mains_hz) fixed_bases.push_back(mains);
+  for (double base : context.exclude_harmonics_of_hz) fixed_bases.push_back(base);
   const double guard_hz = options.guard_bins * df;
-  const double range_hz = (nbins - 2.0) * df;  // f / df + 1 >= nbins - 1, up to rounding
-  std::vector<int> bins(nl, -1), prev_bins(nl, -2);
+  const double guard_fraction = options.guard_fraction;
+  const double top_bin = nbins - 1;
+  std::vector<double> f(grid), guard(grid), q(grid), score(grid, 0.0);
+  std::vector<unsigned char> excluded(grid), changed(grid, 0);
+  std::vector<int> bin(grid), used(grid, 0);
+  changed[0] = 1;
+  for (int l = 0; l < nl; ++l) {
+    const double fl = family.lines[l].nominal_hz;
+    for (int g = 0; g < grid; ++g) {
+      f[g] = fl * s_grid[g];
+      guard[g] = std::max(guard_hz, guard_fraction * f[g]);
+      q[g] = f[g] / df;
+      excluded[g] = (q[g] + 1.0 >= top_bin) | (f[g] <= 0.0);  // "range"
+    }
+    if (context.exclude_shaft) {
+      for (int g = 0; g < grid; ++g) {
+        const double m = std::max(1.0, std::nearbyint(f[g] * comb_inv[g]));
+        excluded[g] |= std::abs(f[g] - m * comb_hz[g]) <= guard[g];
+      }
+    }
+    for (double base : fixed_bases) {
+      if (!(base > 0.0)) continue;
+      const double inv = 1.0 / base;
+      for (int g = 0; g < grid; ++g) {
+        const double m = std::max(1.0, std::nearbyint(f[g] * inv));
+        excluded[g] |= std::abs(f[g] - m * base) <= guard[g];
+      }
+    }
+    for (int g = 0; g < grid; ++g) bin[g] = excluded[g] ? -1 : static_cast<int>(std::floor(q[g]));
+    for (int g = 0; g < grid; ++g) {
+      if (bin[g] < 0) continue;
+      score[g] += score_at(bin[g]);
+      ++used[g];
+    }
+    for (int g = 1; g < grid; ++g) changed[g] |= bin[g] != bin[g - 1];
+  }
+
   double best_score = -1.0, best_s = c;
   int best_used = 0;
   double best_tail = 0.0;
   bool best_tail_valid = false;
   int combos = 0;
-  int max_used = 0;
   for (int g = 0; g < grid; ++g) {
-    const double s = grid == 1 ? c : s_lo + (s_hi - s_lo) * g / double(grid - 1);
-    double score = 0.0;
-    int used = 0;
-    Base comb_shaft{shaft_base * s, 0.0};
-    comb_shaft.inv = 1.0 / comb_shaft.hz;
-    for (int l = 0; l < nl; ++l) {
-      const double f = nominal[l] * s;
-      const double guard = std::max(guard_hz, options.guard_fraction * f);
-      bool excluded =
-          context.exclude_shaft && comb_shaft.hz > 0.0 && near_harmonic(f, comb_shaft, guard);
-      for (const Base& b : fixed_bases) excluded = excluded || near_harmonic(f, b, guard);
-      // The range test is exact only through excluded_at (a division): use it near the top.
-      if (!excluded && (f <= 0.0 || f >= range_hz - 2.0 * df))
-        excluded = excluded_at(f, s, nullptr);
-      if (excluded) {
-        bins[l] = -1;
-        continue;
-      }
-      const int i0 = static_cast<int>(std::floor(f / df));
-      bins[l] = i0;
-      score += score_at(i0);
-      ++used;
-    }
-    if (bins != prev_bins) {
-      ++combos;
-      prev_bins = bins;
-    }
-    max_used = std::max(max_used, used);
+    combos += changed[g];
     // Compare combs with different M by their Gamma tail, not the raw sum.
     bool improves;
-    if (used == best_used) {
-      improves = used > 0 && score > best_score;
+    if (used[g] == best_used) {
+      improves = used[g] > 0 && score[g] > best_score;
     } else {
-      const double better =
-          used > 0 ? -LogGammaUpperTail(used, score) : -std::numeric_limits<double>::infinity();
+      const double better = used[g] > 0 ? -LogGammaUpperTail(used[g], score[g])
+                                        : -std::numeric_limits<double>::infinity();
       if (!best_tail_valid) {  // the best comb's tail, formed once per change of the best
         best_tail = best_used > 0 ? -LogGammaUpperTail(best_used, best_score)
                                   : -std::numeric_limits<double>::infinity();
@@ -362,9 +374,9 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
       improves = better > best_tail;
     }
     if (improves) {
-      best_score = score;
-      best_s = s;
-      best_used = used;
+      best_score = score[g];
+      best_s = s_grid[g];
+      best_used = used[g];
       best_tail_valid = false;
     }
   }
