@@ -136,30 +136,37 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
 
 double LogGammaUpperTail(int m, double x) {
   if (x <= 0.0) return 0.0;
-  // Q(m, x) = exp(-x) sum_{j<m} x^j / j!, summed in log space: the log terms are formed twice
-  // (once for their maximum, once for the sum) instead of stored, so the hot comb loop allocates
-  // nothing; both passes produce the same values.
+  // Q(m, x) = exp(-x) sum_{j<m} x^j / j! = exp(-x + l*) sum_j t_j with t_j = x^j / j! / (x^j* /
+  // j*!) relative to the largest term j* = min(m - 1, floor(x)): the t_j follow from t_j* = 1 by
+  // the ratios x / j (upwards) and j / x (downwards), all <= 1, so the sum needs no exp and
+  // cannot overflow; l* = j* ln x - ln j*! is the only transcendental work besides ln of the sum.
   constexpr int kTable = 256;
-  static const std::array<double, kTable> log_j = [] {
+  static const std::array<double, kTable> log_factorial = [] {
     std::array<double, kTable> t{};
-    for (int j = 1; j < kTable; ++j) t[j] = std::log(double(j));
+    for (int j = 1; j < kTable; ++j) t[j] = t[j - 1] + std::log(double(j));
     return t;
   }();
-  const double log_x = std::log(x);
-  auto log_of = [&](int j) { return j < kTable ? log_j[j] : std::log(double(j)); };
-  double log_term = 0.0;  // j = 0
-  double log_max = 0.0;
-  for (int j = 1; j < m; ++j) {
-    log_term += log_x - log_of(j);
-    log_max = std::max(log_max, log_term);
+  const int top = static_cast<int>(std::min<double>(m - 1, std::floor(x)));
+  double log_top_factorial;
+  if (top < kTable) {
+    log_top_factorial = log_factorial[top];
+  } else {
+    log_top_factorial = log_factorial[kTable - 1];
+    for (int j = kTable; j <= top; ++j) log_top_factorial += std::log(double(j));
   }
-  double s = 0.0;
-  log_term = 0.0;
-  for (int j = 0; j < m; ++j) {
-    if (j > 0) log_term += log_x - log_of(j);
-    s += std::exp(log_term - log_max);
+  const double log_max = top * std::log(x) - log_top_factorial;
+  double sum = 1.0;
+  double t = 1.0;
+  for (int j = top; j > 0 && t > 1e-18; --j) {  // t_{j-1} = t_j j / x
+    t *= j / x;
+    sum += t;
   }
-  return std::min(0.0, -x + log_max + std::log(s));
+  t = 1.0;
+  for (int j = top + 1; j < m && t > 1e-18; ++j) {  // t_j = t_{j-1} x / j
+    t *= x / j;
+    sum += t;
+  }
+  return std::min(0.0, -x + log_max + std::log(sum));
 }
 
 double GammaThreshold(int m, double alpha_over_mult) {
@@ -360,9 +367,14 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
   for (int g = 0; g < grid; ++g) {
     combos += changed[g];
     // Compare combs with different M by their Gamma tail, not the raw sum.
+    // Q(M, S) grows with M and falls with S, which settles most comparisons without a tail.
     bool improves;
     if (used[g] == best_used) {
       improves = used[g] > 0 && score[g] > best_score;
+    } else if (used[g] > best_used && best_used > 0 && score[g] <= best_score) {
+      improves = false;
+    } else if (used[g] < best_used && used[g] > 0 && score[g] > best_score) {
+      improves = true;
     } else {
       const double better = used[g] > 0 ? -LogGammaUpperTail(used[g], score[g])
                                         : -std::numeric_limits<double>::infinity();
