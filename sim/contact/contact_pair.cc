@@ -79,6 +79,10 @@ ContactPair::ContactPair(std::string name,
     p.slots.assign(n, Slot{});
     p.x_built.assign(p.master.num_nodes(), 0.0);
     p.y_built.assign(p.master.num_nodes(), 0.0);
+    // Largest bulk-modulus penalty of the master (constant; StableTimeStep every step).
+    double k_max = 0.0;
+    for (double k : p.master.bulk_stiffness) k_max = std::max(k_max, options_.penalty_scale * k);
+    max_penalty_.push_back(k_max);
   }
 }
 
@@ -174,8 +178,7 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
   const bool frictionless = options_.friction.IsFrictionless();
   const double capture = pass.capture;
 
-#pragma omp parallel for schedule(static) if (ns >= options_.parallel_min_nodes)
-  for (int i = 0; i < ns; ++i) {
+  auto slave_node = [&](int i) {
     Slot& slot = pass.slots[i];
     slot = Slot{};
     const int s = slave.nodes[i];
@@ -189,7 +192,7 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
                              pass.tangential_stiffness[i];
         pass.tangential_force[i] = 0.0;
       }
-      continue;
+      return;
     }
     const int a = master.nodes[master.segment_a[proj.segment]];
     const int b = master.nodes[master.segment_b[proj.segment]];
@@ -231,6 +234,14 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     slot.fny = fn * ny;
     slot.ftx = ft * tx;
     slot.fty = ft * ty;
+  };
+  // Below parallel_min_nodes no OpenMP region at all (an `if(false)` region still costs a team
+  // allocation per call in libgomp when it has no thread pool).
+  if (ns >= options_.parallel_min_nodes) {
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < ns; ++i) slave_node(i);
+  } else {
+    for (int i = 0; i < ns; ++i) slave_node(i);
   }
 
   // Scatter in fixed slave order: deterministic for any thread count.
@@ -272,19 +283,17 @@ double ContactPair::StableTimeStep(const fe::NodalState& state) const {
     if (!(dt_ref > 0.0)) return kInf;  // adapts to the first step it is given
     omega2 = 2.0 * options_.penalty_scale / (dt_ref * dt_ref);
   } else {
-    for (const Pass& p : passes_) {
+    for (size_t ip = 0; ip < passes_.size(); ++ip) {
+      const Pass& p = passes_[ip];
       auto min_mass = [&](const ContactSurface& s) {
         double m = kInf;
         for (int g : s.nodes)
           if (state.mass[g] > 0.0) m = std::min(m, state.mass[g]);
         return m;
       };
-      double k_max = options_.constant_stiffness;
-      if (options_.penalty_law == PenaltyLaw::kBulkModulus) {
-        k_max = 0.0;
-        for (double k : p.master.bulk_stiffness)
-          k_max = std::max(k_max, options_.penalty_scale * k);
-      }
+      const double k_max = options_.penalty_law == PenaltyLaw::kBulkModulus
+                               ? max_penalty_[ip]
+                               : options_.constant_stiffness;
       const double inv = InverseMass(min_mass(p.slave)) + InverseMass(min_mass(p.master));
       omega2 = std::max(omega2, k_max * inv);
     }

@@ -142,6 +142,7 @@ class ContactPair : public solver::ForceContributor {
   double stored_energy_ = 0.0, friction_dissipation_ = 0.0, damping_dissipation_ = 0.0;
   int num_rebuilds_ = 0;
   bool initialised_ = false;
+  std::vector<double> max_penalty_;  // per pass: largest bulk-modulus penalty of its master
 };
 
 // Convenience for model builders and `spall bench fe`: a pair between two curves of a mesh,

@@ -306,24 +306,37 @@ void QuadElements::ComputeBlock(int k, const NodalState& s, double dt_prev) {
                         blocks_[k], s, dt_prev, &block_int_[k], &block_hg_[k], &block_damp_[k]);
 }
 
+// On one thread the loops run without an OpenMP region: libgomp allocates a team for every
+// region when it has no thread pool (no allocation in the time loop).
 double QuadElements::ComputeCornerForces(const NodalState& s, double dt_prev, int threads) {
   const int nb = static_cast<int>(blocks_.size());
-#pragma omp parallel for schedule(static) num_threads(threads > 0 ? threads : omp_get_max_threads())
-  for (int k = 0; k < nb; ++k) ComputeBlock(k, s, dt_prev);
+  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  if (nt > 1) {
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for (int k = 0; k < nb; ++k) ComputeBlock(k, s, dt_prev);
+  } else {
+    for (int k = 0; k < nb; ++k) ComputeBlock(k, s, dt_prev);
+  }
   return StableStep(s);
 }
 
 double QuadElements::ComputeForces(NodalState* s, double dt_prev, int threads) {
   const int nb = static_cast<int>(blocks_.size());
   const int nc = (num_nodes_ + kGatherChunk - 1) / kGatherChunk;
-#pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
-  {
+  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  if (nt > 1) {
+#pragma omp parallel num_threads(nt)
+    {
 #pragma omp for schedule(static)
-    for (int k = 0; k < nb; ++k) ComputeBlock(k, *s, dt_prev);
-      // (implicit barrier: every corner force is written before any node gathers)
+      for (int k = 0; k < nb; ++k) ComputeBlock(k, *s, dt_prev);
+        // (implicit barrier: every corner force is written before any node gathers)
 #pragma omp for schedule(static) nowait
-    for (int c = 0; c < nc; ++c)
-      GatherForces(s, c * kGatherChunk, std::min(num_nodes_, (c + 1) * kGatherChunk));
+      for (int c = 0; c < nc; ++c)
+        GatherForces(s, c * kGatherChunk, std::min(num_nodes_, (c + 1) * kGatherChunk));
+    }
+  } else {
+    for (int k = 0; k < nb; ++k) ComputeBlock(k, *s, dt_prev);
+    GatherForces(s, 0, num_nodes_);
   }
   return StableStep(*s);
 }
@@ -353,7 +366,9 @@ void QuadElements::GatherForces(NodalState* s, int begin, int end) const {
 
 void QuadElements::GatherForces(NodalState* s, int threads) const {
   const int nc = (num_nodes_ + kGatherChunk - 1) / kGatherChunk;
-#pragma omp parallel for schedule(static) num_threads(threads > 0 ? threads : omp_get_max_threads())
+  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  if (nt <= 1) return GatherForces(s, 0, num_nodes_);
+#pragma omp parallel for schedule(static) num_threads(nt)
   for (int c = 0; c < nc; ++c)
     GatherForces(s, c * kGatherChunk, std::min(num_nodes_, (c + 1) * kGatherChunk));
 }

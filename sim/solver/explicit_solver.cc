@@ -241,12 +241,26 @@ void ExplicitSolver::RigidMotionSums(int c) {
   double* sums = &chunk_sums_[static_cast<size_t>(c) * np * kRigidSums];
   std::fill(sums, sums + np * kRigidSums, 0.0);
   const int end = std::min(nn, (c + 1) * kNodeChunk);
-  for (int i = c * kNodeChunk; i < end; ++i) {
-    double* s = sums + node_part_[i] * kRigidSums;
-    const double m = state_.mass[i], x = state_.x[i], y = state_.y[i], vx = state_.vx[i],
-                 vy = state_.vy[i];
-    s[0] += m, s[1] += m * x, s[2] += m * y, s[3] += m * vx, s[4] += m * vy;
-    s[5] += m * (x * vy - y * vx), s[6] += m * (x * x + y * y);
+  const double* __restrict ms = state_.mass.data();
+  const double* __restrict xs = state_.x.data();
+  const double* __restrict ys = state_.y.data();
+  const double* __restrict us = state_.vx.data();
+  const double* __restrict ws = state_.vy.data();
+  // Runs of nodes of one part, summed in registers (vectorised), then added to the part's sums.
+  for (int i = c * kNodeChunk; i < end;) {
+    const int part = node_part_[i];
+    int j = i + 1;
+    while (j < end && node_part_[j] == part) ++j;
+    double t0 = 0, t1 = 0, t2 = 0, t3 = 0, t4 = 0, t5 = 0, t6 = 0;
+#pragma omp simd reduction(+ : t0, t1, t2, t3, t4, t5, t6)
+    for (int k = i; k < j; ++k) {
+      const double m = ms[k], x = xs[k], y = ys[k], vx = us[k], vy = ws[k];
+      t0 += m, t1 += m * x, t2 += m * y, t3 += m * vx, t4 += m * vy;
+      t5 += m * (x * vy - y * vx), t6 += m * (x * x + y * y);
+    }
+    double* s = sums + part * kRigidSums;
+    s[0] += t0, s[1] += t1, s[2] += t2, s[3] += t3, s[4] += t4, s[5] += t5, s[6] += t6;
+    i = j;
   }
 }
 
@@ -285,6 +299,90 @@ void ExplicitSolver::PartRigidMotion(int part, double* vx, double* vy, double* o
   *omega = (t[5] - t[0] * (cx * *vy - cy * *vx)) / (t[6] - t[0] * (cx * cx + cy * cy));
 }
 
+// Body of the element pass's parallel region (orphaned work-sharing constructs: called inside a
+// team it splits the work, called directly it runs on one thread without an OpenMP region,
+// which libgomp would otherwise allocate a team for every time when it has no thread pool).
+void ExplicitSolver::ElementPass(double h, bool rigid_sums, bool gather) {
+  const int nn = static_cast<int>(state_.size());
+  const int nchunks = (nn + kNodeChunk - 1) / kNodeChunk;
+  const int nblocks = elements_.num_blocks();
+  constexpr int kGather = fe::QuadElements::kGatherChunk;
+  const int ngather = (nn + kGather - 1) / kGather;
+#pragma omp for schedule(static) nowait
+  for (int k = 0; k < nblocks; ++k) elements_.ComputeBlock(k, state_, h);
+  if (rigid_sums) {
+    // Rigid motion of the parts from x^n, v^(n-1/2) (read-only here, so no barrier needed).
+#pragma omp for schedule(static) nowait
+    for (int c = 0; c < nchunks; ++c) RigidMotionSums(c);
+  }
+  if (gather) {
+#pragma omp barrier
+#pragma omp for schedule(static) nowait
+    for (int c = 0; c < ngather; ++c)
+      elements_.GatherForces(&state_, c * kGather, std::min(nn, (c + 1) * kGather));
+  }
+}
+
+// Central-difference update of node chunk c (optionally gathering its element forces first,
+// while they are hot in cache). Returns the mass-damping work of the chunk.
+double ExplicitSolver::UpdateNodes(int c, bool gather, const UpdateConstants& k) {
+  const int nn = static_cast<int>(state_.size());
+  const int begin = c * kNodeChunk, end = std::min(nn, (c + 1) * kNodeChunk);
+  if (gather) elements_.GatherForces(&state_, begin, end);
+  double* __restrict x = state_.x.data();
+  double* __restrict y = state_.y.data();
+  double* __restrict vx = state_.vx.data();
+  double* __restrict vy = state_.vy.data();
+  const double* __restrict fx = state_.fx.data();
+  const double* __restrict fy = state_.fy.data();
+  const double* __restrict m = state_.mass.data();
+  const double* __restrict inv_m = inv_mass_.data();
+  const double dt = k.dt, dt_avg = k.dt_avg;
+  if (!k.damp) {
+#pragma omp simd
+    for (int i = begin; i < end; ++i) {
+      const double s = dt_avg * inv_m[i];
+      vx[i] += s * fx[i], vy[i] += s * fy[i];
+      x[i] += dt * vx[i], y[i] += dt * vy[i];
+    }
+    return 0.0;
+  }
+  // Semi-implicit mass damping of the velocity relative to the part's rigid motion (or of the
+  // absolute velocity); written branch-free so that it vectorises.
+  const double* __restrict pr = part_rigid_.data();
+  const int* __restrict part = node_part_.data();
+  const char* __restrict fixed = constrained_.data();
+  const double c_old = k.c_old, c_inv = k.c_inv, rel = k.relative ? 1.0 : 0.0;
+  const double w_scale = 0.25 * mass_damping_ * dt_avg;
+  double work = 0.0;
+  // Runs of nodes of one part (parts are contiguous after ReorderForLocality), so the part's
+  // rigid motion is a scalar in the vector loop.
+  for (int i0 = begin; i0 < end;) {
+    const int p = part[i0];
+    int i1 = i0 + 1;
+    while (i1 < end && part[i1] == p) ++i1;
+    const double* r = pr + 5 * p;
+    const double r0 = rel * r[0], r1 = rel * r[1], r2 = rel * r[2], r3 = r[3], r4 = r[4];
+    double run_work = 0.0;
+#pragma omp simd reduction(+ : run_work)
+    for (int i = i0; i < i1; ++i) {
+      const double rvx = r0 - r2 * (y[i] - r4), rvy = r1 + r2 * (x[i] - r3);
+      const double s = dt_avg * inv_m[i];
+      const double ux0 = vx[i] - rvx, uy0 = vy[i] - rvy;
+      const double ux1 = (c_old * ux0 + s * fx[i]) * c_inv, uy1 = (c_old * uy0 + s * fy[i]) * c_inv;
+      const double vx1 = rvx + ux1, vy1 = rvy + uy1;
+      const double free = fixed[i] ? 0.0 : 1.0;  // constrained nodes: no damping work
+      run_work +=
+          free * w_scale * m[i] * ((ux0 + ux1) * (vx[i] + vx1) + (uy0 + uy1) * (vy[i] + vy1));
+      vx[i] = vx1, vy[i] = vy1;
+      x[i] += dt * vx1, y[i] += dt * vy1;
+    }
+    work += run_work;
+    i0 = i1;
+  }
+  return work;
+}
+
 void ExplicitSolver::Step() {
   if (!initialized_) Initialize();
   const double h = dt_prev_;
@@ -292,31 +390,17 @@ void ExplicitSolver::Step() {
   // may read them), so the gather is done in the element pass's parallel region; without, it is
   // fused into the nodal update below. The rigid-motion sums of relative mass damping run in the
   // same region. Either way: two parallel regions (sync points) per step, the minimum for a
-  // global stable step.
+  // global stable step, and none at all on one thread.
   const bool fuse_gather = contributors_.empty();
   const bool damp = mass_damping_ > 0.0;
   const bool relative = damp && options_.damping_relative_to_rigid_motion;
   const int nn = static_cast<int>(state_.size());
   const int nchunks = (nn + kNodeChunk - 1) / kNodeChunk;
-  const int nblocks = elements_.num_blocks();
-  const int ngather = (nn + fe::QuadElements::kGatherChunk - 1) / fe::QuadElements::kGatherChunk;
+  if (threads_ > 1) {
 #pragma omp parallel num_threads(threads_)
-  {
-#pragma omp for schedule(static) nowait
-    for (int k = 0; k < nblocks; ++k) elements_.ComputeBlock(k, state_, h);
-    if (relative) {
-      // Rigid motion of the parts from x^n, v^(n-1/2) (read-only here, so no barrier needed).
-#pragma omp for schedule(static) nowait
-      for (int c = 0; c < nchunks; ++c) RigidMotionSums(c);
-    }
-    if (!fuse_gather) {
-#pragma omp barrier
-#pragma omp for schedule(static) nowait
-      for (int c = 0; c < ngather; ++c)
-        elements_.GatherForces(&state_,
-                               c * fe::QuadElements::kGatherChunk,
-                               std::min(nn, (c + 1) * fe::QuadElements::kGatherChunk));
-    }
+    ElementPass(h, relative, !fuse_gather);
+  } else {
+    ElementPass(h, relative, !fuse_gather);
   }
   double dt = options_.time_step_scale * elements_.StableStep(state_);
   dt = std::min(dt, options_.max_time_step);
@@ -339,54 +423,22 @@ void ExplicitSolver::Step() {
   for (const auto& c : velocity_conditions_)
     for (int id : c.nodes) remember(id);
 
-  const double dt_avg = 0.5 * (h + dt);
-  const double ad = mass_damping_ * dt_avg * 0.5;
-  const double c_old = 1.0 - ad, c_inv = 1.0 / (1.0 + ad);
+  UpdateConstants k;
+  k.dt = dt;
+  k.dt_avg = 0.5 * (h + dt);
+  const double ad = mass_damping_ * k.dt_avg * 0.5;
+  k.c_old = 1.0 - ad, k.c_inv = 1.0 / (1.0 + ad);
+  k.damp = damp, k.relative = relative;
   double* chunk_work = chunk_sums_.data();  // reuse scratch: one value per chunk
+  if (threads_ > 1) {
 #pragma omp parallel for schedule(static) num_threads(threads_)
-  for (int c = 0; c < nchunks; ++c) {
-    const int begin = c * kNodeChunk, end = std::min(nn, (c + 1) * kNodeChunk);
-    if (fuse_gather) elements_.GatherForces(&state_, begin, end);  // still in cache below
-    double* __restrict x = state_.x.data();
-    double* __restrict y = state_.y.data();
-    double* __restrict vx = state_.vx.data();
-    double* __restrict vy = state_.vy.data();
-    const double* __restrict fx = state_.fx.data();
-    const double* __restrict fy = state_.fy.data();
-    const double* __restrict m = state_.mass.data();
-    const double* __restrict inv_m = inv_mass_.data();
-    double work = 0.0;
-    if (!damp) {
-#pragma omp simd
-      for (int i = begin; i < end; ++i) {
-        const double s = dt_avg * inv_m[i];
-        vx[i] += s * fx[i], vy[i] += s * fy[i];
-        x[i] += dt * vx[i], y[i] += dt * vy[i];
-      }
-    } else {
-      for (int i = begin; i < end; ++i) {
-        double rvx = 0.0, rvy = 0.0;
-        if (relative) {
-          const double* r = &part_rigid_[5 * static_cast<size_t>(node_part_[i])];
-          rvx = r[0] - r[2] * (y[i] - r[4]);
-          rvy = r[1] + r[2] * (x[i] - r[3]);
-        }
-        const double s = dt_avg * inv_m[i];
-        const double ux0 = vx[i] - rvx, uy0 = vy[i] - rvy;
-        const double ux1 = (c_old * ux0 + s * fx[i]) * c_inv,
-                     uy1 = (c_old * uy0 + s * fy[i]) * c_inv;
-        const double vx1 = rvx + ux1, vy1 = rvy + uy1;
-        if (!constrained_[i])
-          work += m[i] * mass_damping_ * dt_avg * 0.25 *
-                  ((ux0 + ux1) * (vx[i] + vx1) + (uy0 + uy1) * (vy[i] + vy1));
-        vx[i] = vx1, vy[i] = vy1;
-        x[i] += dt * vx1, y[i] += dt * vy1;
-      }
-    }
-    chunk_work[c] = work;
+    for (int c = 0; c < nchunks; ++c) chunk_work[c] = UpdateNodes(c, fuse_gather, k);
+  } else {
+    for (int c = 0; c < nchunks; ++c) chunk_work[c] = UpdateNodes(c, fuse_gather, k);
   }
   if (damp)
     for (int c = 0; c < nchunks; ++c) damping_work_ += chunk_work[c];
+  const double dt_avg = k.dt_avg;
 
   ApplyConstraints(dt, dt_avg, time_ + 0.5 * dt, time_ + dt);
   time_ += dt;

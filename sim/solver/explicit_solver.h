@@ -178,6 +178,12 @@ class ExplicitSolver {
   // Per-part rigid motion in two pieces: sums over node chunk c (run inside the element pass's
   // parallel region), then the fixed-order reduction over chunks.
   void RigidMotionSums(int c);
+  struct UpdateConstants {
+    double dt = 0.0, dt_avg = 0.0, c_old = 1.0, c_inv = 1.0;
+    bool damp = false, relative = false;
+  };
+  void ElementPass(double h, bool rigid_sums, bool gather);
+  double UpdateNodes(int c, bool gather, const UpdateConstants& k);
   void ReducePartRigidMotion();
   void ApplyConstraints(double dt, double dt_avg, double t_half, double t_next);
   void MaybeOutput(bool force);
