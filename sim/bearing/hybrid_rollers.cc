@@ -94,6 +94,7 @@ bool HybridOptions::IsValid(std::string* error) const {
     return fail("hybrid model: tangential_stiffness_ratio must be > 0");
   if (!(cage_stiffness_n_per_m > 0))
     return fail("hybrid model: cage_stiffness_n_per_m must be > 0");
+  if (!(cage_radial_play_m > 0)) return fail("hybrid model: cage_radial_play_m must be > 0");
   if (!(spread_half_width_m >= 0)) return fail("hybrid model: spread_half_width_m must be >= 0");
   return true;
 }
@@ -123,6 +124,7 @@ HybridRollers::HybridRollers(const Scene& scene,
   outer_radius_ = housing.outer_raceway_radius_m;
   inner_radius_ = housing.inner_raceway_radius_m;
   pocket_half_width_ = 0.5 * (g.bearing.element_diameter_m + g.pocket_clearance_m);
+  pitch_radius_ = housing.pitch_radius_m;
   k_c_ = PalmgrenContactStiffness(t, options_.palmgren_coefficient);
 
   // Rollers: exact profiles, mass properties, initial pose (centred, pitch circle).
@@ -453,6 +455,25 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
     (void)cc, (void)cs;
     cage_force_[j] = contact(j, 2, false, &lead, 1, &friction_[4 * j + 2]) +
                      contact(j, 2, false, &trail, 1, &friction_[4 * j + 3]);
+    // Radial retention (roller-guided cage): the pocket keeps the roller within
+    // +-cage_radial_play of the pitch radius of the cage frame, else the cage could drift
+    // sideways with the rollers sliding along their orbits (walls alone allow that mode).
+    {
+      const double ex = std::cos(psi), ey = std::sin(psi);
+      const double radial = (cx - cage_.x) * ex + (cy - cage_.y) * ey - pitch_radius_;
+      const double over = std::abs(radial) - options_.cage_radial_play_m;
+      if (over > 0) {
+        const double sgn = radial > 0 ? -1.0 : 1.0;  // force on the roller, along e
+        const double kc = options_.cage_stiffness_n_per_m;
+        potential += 0.5 * kc * over * over;
+        const double q = kc * over;
+        const double fx = sgn * q * ex, fy = sgn * q * ey;
+        fx_[j] += fx, fy_[j] += fy;
+        torque_[j] += (cx - rollers_[j].x) * fy - (cy - rollers_[j].y) * fx;
+        apply_counter(2, cx, cy, -fx, -fy);
+        cage_force_[j] += q;
+      }
+    }
   }
   potential_ = potential;
 

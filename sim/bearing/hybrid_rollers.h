@@ -28,7 +28,8 @@
 //    at the prescribed (ramped) speed.
 //  - roller-cage: the pocket walls are straight lines (W = D + pocket clearance apart), the
 //    roller's extent towards a wall is its support function (the spall corners when the spall
-//    faces the wall); linear spring.
+//    faces the wall); linear spring. Radially each pocket holds its roller within
+//    +-cage_radial_play of the pitch radius (roller-guided cage), linear spring beyond.
 //  - every contact: normal damping (fraction of critical for the roller's mass on the contact's
 //    tangent stiffness), regularised Coulomb friction mu = mu_d + (mu_s - mu_d) exp(-decay |v|)
 //    with a tangential spring (stick) capped at mu Q.
@@ -78,6 +79,9 @@ struct HybridOptions {
   double contact_damping_ratio = 0.1;       // normal contact damping, fraction of critical
   double tangential_stiffness_ratio = 1.0;  // stick spring / normal tangent stiffness
   double cage_stiffness_n_per_m = 2e8;      // pocket wall spring (whole section)
+  // Roller-guided cage: radial play of a roller centre in its pocket about the pitch radius
+  // (assumed; Table 1 gives none). Without it the free cage can drift sideways.
+  double cage_radial_play_m = 0.5e-3;
   // Half-width L of the kernel that spreads an outer-race contact over raceway nodes; 0: the
   // larger of 1 mm and 2 raceway node spacings.
   double spread_half_width_m = 0.0;
@@ -148,7 +152,7 @@ class HybridRollers : public solver::ForceContributor {
   std::vector<double> roller_mass_, roller_inertia_, centroid_x_, centroid_y_;  // body frame
   std::vector<double> pocket_angle_;  // pocket j centre line in the cage frame
   double cage_mass_ = 0, cage_inertia_ = 0, shaft_mass_ = 0;
-  double pocket_half_width_ = 0, outer_radius_ = 0, inner_radius_ = 0;
+  double pocket_half_width_ = 0, pitch_radius_ = 0, outer_radius_ = 0, inner_radius_ = 0;
   double k_c_ = 0, spread_ = 0, dt_limit_ = 0;
   // Raceway nodes sorted by reference angle (uniform): ids, theta0, spacing, radial unit vectors.
   std::vector<int> ring_nodes_;
