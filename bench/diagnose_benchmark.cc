@@ -69,6 +69,16 @@ void BM_BandSes(benchmark::State& state) {
 }
 BENCHMARK(BM_BandSes)->Unit(benchmark::kMicrosecond);
 
+// The same band's SES power as Diagnose forms it (single-precision transforms).
+void BM_BandSesPowerFast(benchmark::State& state) {
+  BandFixture f;
+  for (auto _ : state) {
+    const std::vector<double> p = f.analyzer.SesPowerFast(f.band, f.max_alpha_hz, nullptr);
+    benchmark::DoNotOptimize(p.data());
+  }
+}
+BENCHMARK(BM_BandSesPowerFast)->Unit(benchmark::kMicrosecond);
+
 void BM_BandFloor(benchmark::State& state) {
   BandFixture f;
   const EnvelopeSpectrum ses = f.analyzer.Compute(f.band, {.max_alpha_hz = f.max_alpha_hz});

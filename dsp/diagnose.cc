@@ -4,12 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
-#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "dsp/fft.h"
 #include "dsp/prewhiten.h"
 
 namespace spallkit::dsp {
@@ -88,45 +85,6 @@ struct BandResult {
   NormalizedSpectrum normalized;
   std::vector<FamilyDetection> detections;
   double best_p = 1.0;
-};
-
-// SES power P(alpha) = |FFT(SE - mean)|^2 / m^2 of one band, alpha = 0 .. max_alpha_hz: the
-// EnvelopeAnalyzer's SES squared (its level is |FFT(SE - mean)| / m), formed from the transform
-// directly. Why not analyzer.Compute(): its |X| is a hypot per bin, which cost as much as both
-// transforms of a candidate band, and the detection only needs |X|^2. The real FFTs (one per
-// decimated size) are kept across bands.
-class BandPower {
- public:
-  explicit BandPower(EnvelopeAnalyzer* analyzer) : analyzer_(analyzer) {}
-
-  std::vector<double> Compute(const Band& band, double max_alpha_hz, int* envelope_size) {
-    double rate_hz = 0.0;
-    std::vector<double> se = analyzer_->SquaredEnvelope(band, max_alpha_hz, &rate_hz);
-    const int m = static_cast<int>(se.size());
-    *envelope_size = m;
-    double sum = 0.0;
-    for (double v : se) sum += v;
-    const double mean = sum / m;
-    for (double& v : se) v -= mean;
-    auto& fft = ffts_[m];
-    if (!fft) fft = std::make_unique<RealFft>(m);
-    spectrum_.resize(m / 2 + 1);
-    fft->Forward(se.data(), spectrum_.data());
-    const double df = analyzer_->resolution_hz();
-    const double nyquist = 0.5 * analyzer_->sample_rate_hz();
-    // Bins as in EnvelopeAnalyzer::Compute: floor(min(max_alpha, fs/2) / df).
-    const int bins = static_cast<int>(std::floor(std::min(max_alpha_hz, nyquist) / df + 1e-9)) + 1;
-    std::vector<double> power(bins);
-    const double inv_m2 = 1.0 / (double(m) * double(m));
-    for (int k = 0; k < bins; ++k) power[k] = std::norm(spectrum_[k]) * inv_m2;
-    power[0] = 0.0;  // mean removed
-    return power;
-  }
-
- private:
-  EnvelopeAnalyzer* analyzer_;
-  std::map<int, std::unique_ptr<RealFft>> ffts_;
-  std::vector<std::complex<double>> spectrum_;
 };
 
 // The candidates to search: all of them, or the max_bands of highest spectral kurtosis (kept in
@@ -309,7 +267,6 @@ Diagnosis Diagnose(const Record& record,
   }
 
   const int floor_half = options.floor_window_bins / 2 + 2;
-  BandPower band_power(&analyzer);
   std::optional<BandResult> best;
   std::optional<BandResult> kurt_choice;
   bool kurt_choice_is_best = false;
@@ -318,7 +275,9 @@ Diagnosis Diagnose(const Record& record,
     r.node = node;
     const Band band = node.band();
     const double max_alpha = std::min(band.width_hz(), alpha_need + floor_half * df);
-    const std::vector<double> power = band_power.Compute(band, max_alpha, &r.envelope_size);
+    // SES power (level^2) in single precision: the transforms are most of a band's cost, and
+    // the floor, z and p-values need ~6 digits, not 15 (dsp/envelope.h).
+    const std::vector<double> power = analyzer.SesPowerFast(band, max_alpha, &r.envelope_size);
     r.normalized = NormalizeSpectrum(power, df, dopt);
     r.normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
     // Cage first: when its comb is detected, its harmonics are non-evidence for the inner race

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "core/error.h"
@@ -17,6 +18,21 @@ struct EnvelopeAnalyzer::Plans {
   std::vector<std::complex<double>> envelope;
   std::vector<double> se;
   std::vector<std::complex<double>> se_spectrum;
+};
+
+// Single-precision buffers and plans for one decimated size m (SesPowerFast).
+struct EnvelopeAnalyzer::PlansF {
+  explicit PlansF(int m)
+      : inverse(m, +1),
+        half(m / 2, -1),
+        bins(AllocateComplexF(m)),
+        envelope(AllocateComplexF(m)),
+        packed(AllocateComplexF(m / 2)),
+        packed_spectrum(AllocateComplexF(m / 2)) {}
+  ComplexFftF inverse;  // shifted band bins -> complex envelope
+  ComplexFftF half;     // SE packed as m/2 complex values -> their spectrum
+  FftwArray<std::complex<float>> bins, envelope, packed, packed_spectrum;
+  std::vector<std::complex<double>> twiddle;  // e^{-2 pi i k / m}, k <= the alpha bins used
 };
 
 namespace {
@@ -161,6 +177,81 @@ EnvelopeSpectrum EnvelopeAnalyzer::Compute(const Band& band, const EnvelopeOptio
   }
   out.level[0] = 0.0;  // mean removed; avoids a rounding residue
   return out;
+}
+
+std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
+                                                   double max_alpha_hz,
+                                                   int* envelope_size) {
+  if (!(max_alpha_hz > 0)) {
+    std::ostringstream os;
+    os << "envelope SES power: max_alpha_hz must be > 0, got " << max_alpha_hz;
+    throw InputError(os.str());
+  }
+  const BandBins b = Resolve(band, max_alpha_hz);
+  const int m = b.m;  // a multiple of 64 (FftFastSize), and > 2 alpha_bins
+  if (envelope_size) *envelope_size = m;
+  auto& slot = plans_f_[m];
+  if (!slot) slot = std::make_unique<PlansF>(m);
+  PlansF& p = *slot;
+
+  // Band bins with the analytic weights (1, 1/2 at DC and Nyquist), scaled to unit RMS: c_true
+  // = gain * c with gain = rms * 2 / n (FillEnvelope's scale), so SE_true = gain^2 SE and
+  // P_true = gain^4 P.
+  const int nb = b.k2 - b.k1 + 1;
+  double energy = 0.0;
+  for (int k = b.k1; k <= b.k2; ++k) energy += std::norm(spectrum_[k]);
+  const double rms = std::sqrt(energy / nb);
+  std::vector<double> power(b.alpha_bins + 1, 0.0);
+  if (!(rms > 0.0)) return power;  // an empty band: SE is 0
+  const double inv_rms = 1.0 / rms;
+  std::complex<float>* in = p.bins.get();
+  for (int j = 0; j < nb; ++j) {
+    const int k = b.k1 + j;
+    const bool edge = (k == 0) || (2 * k == n_);
+    const std::complex<double> v = spectrum_[k] * (edge ? 0.5 * inv_rms : inv_rms);
+    in[j] = std::complex<float>(static_cast<float>(v.real()), static_cast<float>(v.imag()));
+  }
+  std::fill(in + nb, in + m, std::complex<float>(0.0f));
+  p.inverse.Execute(in, p.envelope.get());
+
+  // SE = |c|^2 (mean in double), mean removed, packed as z_t = se_2t + i se_2t+1.
+  const float* c = reinterpret_cast<const float*>(p.envelope.get());
+  double sum = 0.0;
+  for (int t = 0; t < m; ++t)
+    sum += double(c[2 * t]) * c[2 * t] + double(c[2 * t + 1]) * c[2 * t + 1];
+  const float mean = static_cast<float>(sum / m);
+  float* z = reinterpret_cast<float*>(p.packed.get());
+  for (int t = 0; t < m; ++t) z[t] = c[2 * t] * c[2 * t] + c[2 * t + 1] * c[2 * t + 1] - mean;
+  p.half.Execute(p.packed.get(), p.packed_spectrum.get());
+
+  // X_k = E_k + w^k O_k with E_k = (Z_k + conj Z_{-k}) / 2, O_k = -i (Z_k - conj Z_{-k}) / 2
+  // (indices mod m/2), w = e^{-2 pi i / m}: the real transform's bins, only up to alpha.
+  const int h = m / 2;
+  if (static_cast<int>(p.twiddle.size()) < b.alpha_bins + 1) {
+    p.twiddle.resize(b.alpha_bins + 1);
+    // Products of a coarse and a fine table (error ~1e-15), not one sincos per bin.
+    const int fine = 64;
+    std::complex<double> fine_w[fine];
+    for (int i = 0; i < fine; ++i) fine_w[i] = std::polar(1.0, -2.0 * std::numbers::pi * i / m);
+    for (int k = 0; k <= b.alpha_bins; k += fine) {
+      const std::complex<double> coarse = std::polar(1.0, -2.0 * std::numbers::pi * k / m);
+      for (int i = 0; i < fine && k + i <= b.alpha_bins; ++i) p.twiddle[k + i] = coarse * fine_w[i];
+    }
+  }
+  const std::complex<float>* zs = p.packed_spectrum.get();
+  const double gain2 = rms * 2.0 / n_ * (rms * 2.0 / n_);
+  const double scale = gain2 * gain2 / (double(m) * double(m));
+  for (int k = 1; k <= b.alpha_bins; ++k) {
+    const std::complex<double> zk(zs[k % h]);
+    const std::complex<double> zc = std::conj(std::complex<double>(zs[(h - k % h) % h]));
+    const std::complex<double> e = 0.5 * (zk + zc);
+    const std::complex<double> d = zk - zc;
+    const std::complex<double> o(0.5 * d.imag(), -0.5 * d.real());  // -i d / 2
+    const std::complex<double> x = e + p.twiddle[k] * o;
+    power[k] = (x.real() * x.real() + x.imag() * x.imag()) * scale;
+  }
+  power[0] = 0.0;  // mean removed
+  return power;
 }
 
 std::vector<double> EnvelopeAnalyzer::SquaredEnvelope(const Band& band,

@@ -80,6 +80,17 @@ class EnvelopeAnalyzer {
   // spans the whole record; scaled so that a band holding a sine of amplitude A gives SE = A^2.
   std::vector<double> SquaredEnvelope(const Band& band, double max_alpha_hz, double* rate_hz);
 
+  // SES power P(alpha) = |FFT(SE - mean)|^2 / m^2, i.e. Compute(band, {max_alpha_hz}).level
+  // squared, for alpha = k * resolution_hz, k = 0 .. floor(min(max_alpha_hz, fs/2) / df)
+  // (max_alpha_hz must be > 0), with the two transforms in single precision (fftwf; the band's
+  // bins are scaled to unit RMS first, so no record is too small or large for floats) and the
+  // second one a half-size complex transform of which only the bins up to max_alpha are formed.
+  // About 2.5x faster than Compute(); each bin within ~3e-6 relative of the double-precision
+  // value (of the noise floor's level, for bins below it): what a detection statistic needs (the
+  // diagnosis searches many bands this way). *envelope_size (may be null) receives the decimated
+  // envelope's length m.
+  std::vector<double> SesPowerFast(const Band& band, double max_alpha_hz, int* envelope_size);
+
   // The complex envelope c (analytic signal of the band-passed record, shifted down by the band's
   // first bin frequency) at the decimated rate, written to *out (resized); returns the rate.
   double ComplexEnvelope(const Band& band,
@@ -88,6 +99,7 @@ class EnvelopeAnalyzer {
 
  private:
   struct Plans;
+  struct PlansF;
   struct BandBins {
     int k1, k2, alpha_bins, m;
   };
@@ -99,6 +111,7 @@ class EnvelopeAnalyzer {
   double fs_hz_ = 0;
   std::vector<std::complex<double>> spectrum_;
   std::map<int, std::unique_ptr<Plans>> plans_;
+  std::map<int, std::unique_ptr<PlansF>> plans_f_;
 };
 
 // One-shot convenience: EnvelopeAnalyzer(x, fs).Compute(band, options).
