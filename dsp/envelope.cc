@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <sstream>
 
@@ -36,6 +37,42 @@ struct EnvelopeAnalyzer::PlansF {
 };
 
 namespace {
+
+// sum v_j^2 and sum v_j with independent vector accumulators (GCC/Clang vector extension): a
+// plain loop is one serial chain of dependent additions, as the compiler may not reassociate.
+double SumOfSquares(const double* v, int count) {
+  typedef double D4 __attribute__((vector_size(32)));
+  D4 a = {0, 0, 0, 0}, b = a;
+  int j = 0;
+  for (; j + 8 <= count; j += 8) {
+    D4 x, y;
+    std::memcpy(&x, v + j, sizeof(x));
+    std::memcpy(&y, v + j + 4, sizeof(y));
+    a += x * x;
+    b += y * y;
+  }
+  a += b;
+  double total = (a[0] + a[1]) + (a[2] + a[3]);
+  for (; j < count; ++j) total += v[j] * v[j];
+  return total;
+}
+
+double Sum(const float* v, int count) {
+  typedef float F8 __attribute__((vector_size(32)));
+  typedef double D4 __attribute__((vector_size(32)));
+  D4 a = {0, 0, 0, 0}, b = a;
+  int j = 0;
+  for (; j + 8 <= count; j += 8) {
+    F8 x;
+    std::memcpy(&x, v + j, sizeof(x));
+    a += __builtin_convertvector(__builtin_shufflevector(x, x, 0, 1, 2, 3), D4);
+    b += __builtin_convertvector(__builtin_shufflevector(x, x, 4, 5, 6, 7), D4);
+  }
+  a += b;
+  double total = (a[0] + a[1]) + (a[2] + a[3]);
+  for (; j < count; ++j) total += v[j];
+  return total;
+}
 
 void CheckSamples(std::span<const double> x, int min_samples, const char* what) {
   if (static_cast<long long>(x.size()) < min_samples) {
@@ -198,8 +235,8 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
   // = gain * c with gain = rms * 2 / n (FillEnvelope's scale), so SE_true = gain^2 SE and
   // P_true = gain^4 P.
   const int nb = b.k2 - b.k1 + 1;
-  double energy = 0.0;
-  for (int k = b.k1; k <= b.k2; ++k) energy += std::norm(spectrum_[k]);
+  const double energy =
+      SumOfSquares(reinterpret_cast<const double*>(spectrum_.data() + b.k1), 2 * nb);
   const double rms = std::sqrt(energy / nb);
   std::vector<double> power(b.alpha_bins + 1, 0.0);
   if (!(rms > 0.0)) return power;  // an empty band: SE is 0
@@ -216,12 +253,10 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
 
   // SE = |c|^2 (mean in double), mean removed, packed as z_t = se_2t + i se_2t+1.
   const float* c = reinterpret_cast<const float*>(p.envelope.get());
-  double sum = 0.0;
-  for (int t = 0; t < m; ++t)
-    sum += double(c[2 * t]) * c[2 * t] + double(c[2 * t + 1]) * c[2 * t + 1];
-  const float mean = static_cast<float>(sum / m);
   float* z = reinterpret_cast<float*>(p.packed.get());
-  for (int t = 0; t < m; ++t) z[t] = c[2 * t] * c[2 * t] + c[2 * t + 1] * c[2 * t + 1] - mean;
+  for (int t = 0; t < m; ++t) z[t] = c[2 * t] * c[2 * t] + c[2 * t + 1] * c[2 * t + 1];
+  const float mean = static_cast<float>(Sum(z, m) / m);
+  for (int t = 0; t < m; ++t) z[t] -= mean;
   p.half.Execute(p.packed.get(), p.packed_spectrum.get());
 
   // X_k = E_k + w^k O_k with E_k = (Z_k + conj Z_{-k}) / 2, O_k = -i (Z_k - conj Z_{-k}) / 2
@@ -241,14 +276,18 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
   const std::complex<float>* zs = p.packed_spectrum.get();
   const double gain2 = rms * 2.0 / n_ * (rms * 2.0 / n_);
   const double scale = gain2 * gain2 / (double(m) * double(m));
+  // 1 <= k <= alpha_bins < h, so Z_k and Z_{h-k} are in range; the complex arithmetic is
+  // written out (std::complex's operator* checks for NaN and does not vectorise).
+  const float* zf = reinterpret_cast<const float*>(zs);
+  const double* tw = reinterpret_cast<const double*>(p.twiddle.data());
   for (int k = 1; k <= b.alpha_bins; ++k) {
-    const std::complex<double> zk(zs[k % h]);
-    const std::complex<double> zc = std::conj(std::complex<double>(zs[(h - k % h) % h]));
-    const std::complex<double> e = 0.5 * (zk + zc);
-    const std::complex<double> d = zk - zc;
-    const std::complex<double> o(0.5 * d.imag(), -0.5 * d.real());  // -i d / 2
-    const std::complex<double> x = e + p.twiddle[k] * o;
-    power[k] = (x.real() * x.real() + x.imag() * x.imag()) * scale;
+    const double zr = zf[2 * k], zi = zf[2 * k + 1];
+    const double cr = zf[2 * (h - k)], ci = -zf[2 * (h - k) + 1];  // conj Z_{h-k}
+    const double er = 0.5 * (zr + cr), ei = 0.5 * (zi + ci);
+    const double o_r = 0.5 * (zi - ci), o_i = -0.5 * (zr - cr);  // -i (Z_k - conj Z_{h-k}) / 2
+    const double wr = tw[2 * k], wi = tw[2 * k + 1];
+    const double xr = er + wr * o_r - wi * o_i, xi = ei + wr * o_i + wi * o_r;
+    power[k] = (xr * xr + xi * xi) * scale;
   }
   power[0] = 0.0;  // mean removed
   return power;
