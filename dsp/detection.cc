@@ -8,6 +8,10 @@
 
 #include "core/error.h"
 
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
 namespace spallkit::dsp {
 
 bool DetectionOptions::IsValid(std::string* error) const {
@@ -42,43 +46,68 @@ double NormalizedSpectrum::PairPValue(double z_value) const {
 
 namespace {
 
-// k-th smallest (0-based) of a[0, n), partially reordering a: the value std::nth_element returns
-// (an order statistic is unique as a value), found by quickselect with median-of-3 pivots and a
-// branchless Lomuto partition. Why: on a noise spectrum every comparison of nth_element's
-// partition is a coin flip the branch predictor loses; here the partition is data-independent
-// straight-line code, about 3x faster on the floor's 401-bin windows.
-double SelectKth(double* a, int n, int k) {
-  int lo = 0, hi = n;
-  for (int round = 0; hi - lo > 32 && round < 64; ++round) {
-    const double x = a[lo], y = a[lo + (hi - lo) / 2], z = a[hi - 1];
-    const double pivot = std::max(std::min(x, y), std::min(std::max(x, y), z));
-    int store = lo;  // [lo, store) < pivot <= [store, i)
-    for (int i = lo; i < hi; ++i) {
-      const double v = a[i];
-      a[i] = a[store];
-      a[store] = v;
-      store += v < pivot;
-    }
-    if (k < store) {
-      hi = store;
-    } else if (store > lo) {
-      lo = store;
-    } else {
-      // Nothing below the pivot: it is the range's minimum. Gather its copies (ties) in front so
-      // the range shrinks even when many values are equal.
-      int eq = lo;
-      for (int i = lo; i < hi; ++i) {
-        const double v = a[i];
-        a[i] = a[eq];
-        a[eq] = v;
-        eq += !(pivot < v);
-      }
-      if (k < eq) return pivot;
-      lo = eq;
-    }
+// Splits src[0, len) into lo (values < pivot) and hi (the rest, NaN included), keeping the
+// order; returns how many went to lo. lo and hi need room for len + 8 values (the vector path
+// stores whole vectors). Branch-free: on a noise spectrum every comparison is a coin flip that a
+// branch predictor loses, which is where std::nth_element spends its time.
+int Partition(const double* src, int len, double pivot, double* lo, double* hi) {
+  int nlo = 0, nhi = 0, i = 0;
+#if defined(__AVX512F__)
+  const __m512d pv = _mm512_set1_pd(pivot);
+  for (; i + 8 <= len; i += 8) {
+    const __m512d v = _mm512_loadu_pd(src + i);
+    const __mmask8 less = _mm512_cmp_pd_mask(v, pv, _CMP_LT_OQ);
+    // Compress into a register and store the whole vector (compress-to-memory is microcoded
+    // and slow on some cores); the lanes past the count are overwritten by the next store.
+    _mm512_storeu_pd(lo + nlo, _mm512_maskz_compress_pd(less, v));
+    _mm512_storeu_pd(hi + nhi, _mm512_maskz_compress_pd(static_cast<__mmask8>(~less), v));
+    const int count = __builtin_popcount(less);
+    nlo += count;
+    nhi += 8 - count;
   }
-  std::nth_element(a + lo, a + k, a + hi);
-  return a[k];
+#endif
+  for (; i < len; ++i) {
+    const double v = src[i];
+    lo[nlo] = v;
+    hi[nhi] = v;
+    const bool less = v < pivot;
+    nlo += less;
+    nhi += !less;
+  }
+  return nlo;
+}
+
+// k-th smallest (0-based) of data[0, n): the value std::nth_element returns (an order statistic
+// is unique as a value), by quickselect with median-of-3 pivots over the branch-free partition
+// above, ping-ponging between three scratch buffers of n + 8 values each; data is not modified.
+double SelectKth(const double* data, int n, int k, double* scratch) {
+  const int cap = n + 8;
+  double* bufs[3] = {scratch, scratch + cap, scratch + 2 * cap};
+  const double* src = data;
+  int cur = -1;  // which buffer src is (-1: data)
+  int len = n;
+  for (int round = 0; len > 16 && round < 64; ++round) {
+    const double x = src[0], y = src[len / 2], z = src[len - 1];
+    const double pivot = std::max(std::min(x, y), std::min(std::max(x, y), z));
+    double* lo = bufs[cur == 0 ? 1 : 0];
+    double* hi = bufs[cur == 2 ? 1 : 2];
+    const int nlo = Partition(src, len, pivot, lo, hi);
+    if (k < nlo) {
+      src = lo;
+      len = nlo;
+    } else if (nlo > 0) {
+      src = hi;
+      len -= nlo;
+      k -= nlo;
+    } else {
+      break;  // nothing below the pivot (ties at the minimum): finish below
+    }
+    cur = src == bufs[0] ? 0 : (src == bufs[1] ? 1 : 2);
+  }
+  double* work = cur >= 0 ? bufs[cur] : bufs[0];
+  if (cur < 0) std::copy(src, src + len, work);
+  std::nth_element(work, work + k, work + len);
+  return work[k];
 }
 
 }  // namespace
@@ -107,12 +136,11 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
   for (int i = 1; i < n; i += step) anchors.push_back(i);
   if (anchors.back() != n - 1) anchors.push_back(n - 1);
   std::vector<double> anchor_floor(anchors.size());
-  std::vector<double> buf(w);
+  std::vector<double> scratch(3 * (w + 8));
   for (size_t a = 0; a < anchors.size(); ++a) {
     int start = anchors[a] - w / 2;
     start = std::clamp(start, 1, n - w);
-    std::copy(power.begin() + start, power.begin() + start + w, buf.begin());
-    anchor_floor[a] = SelectKth(buf.data(), w, w / 2) / std::numbers::ln2;
+    anchor_floor[a] = SelectKth(power.data() + start, w, w / 2, scratch.data()) / std::numbers::ln2;
   }
   // Linear interpolation between anchors.
   size_t a = 0;
