@@ -81,6 +81,19 @@ void CheckSamples(std::span<const double> x, int min_samples, const char* what) 
        << " expected";
     throw InputError(os.str());
   }
+  // x - x is 0 for finite samples and NaN otherwise: one vectorisable sum decides whether to
+  // look for the bad sample.
+  typedef double D4 __attribute__((vector_size(32)));
+  D4 check = {0, 0, 0, 0};
+  size_t j = 0;
+  for (; j + 4 <= x.size(); j += 4) {
+    D4 v;
+    std::memcpy(&v, x.data() + j, sizeof(v));
+    check += v - v;
+  }
+  double total = (check[0] + check[1]) + (check[2] + check[3]);
+  for (; j < x.size(); ++j) total += x[j] - x[j];
+  if (total == 0.0) return;
   for (size_t i = 0; i < x.size(); ++i) {
     if (!std::isfinite(x[i])) {
       std::ostringstream os;

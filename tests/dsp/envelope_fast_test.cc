@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -80,6 +81,28 @@ TEST(SesPowerFast, BadInputIsAnInputError) {
   EXPECT_THROW(analyzer.SesPowerFast({7000, 11000}, 0.0, nullptr), InputError);
   EXPECT_THROW(analyzer.SesPowerFast({11000, 7000}, 100.0, nullptr), InputError);
   EXPECT_THROW(analyzer.SesPowerFast({7000, 30000}, 100.0, nullptr), InputError);
+}
+
+}  // namespace
+}  // namespace spallkit::dsp
+
+namespace spallkit::dsp {
+namespace {
+
+// The analyser's finiteness check (one vectorised sum, then a search) names the bad sample
+// wherever it is.
+TEST(EnvelopeAnalyzerInput, NonFiniteSampleAnywhereIsNamed) {
+  for (int at : {0, 3, 64, 998, 999}) {
+    std::vector<double> x(1000, 0.25);
+    x[at] = at % 2 ? std::nan("") : -HUGE_VAL;
+    try {
+      EnvelopeAnalyzer analyzer(x, 1000);
+      ADD_FAILURE() << "no error at " << at;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("sample " + std::to_string(at) + " "), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 }  // namespace
