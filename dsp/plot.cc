@@ -445,6 +445,56 @@ std::string FormatTick(double value, double step) {
   return buf;
 }
 
+namespace {
+
+// Title centred on top (shrunk to fit), x label under the plot area, y label rotated on the left.
+void DrawTitleAndAxisLabels(cv::Mat& img,
+                            const Style& st,
+                            const cv::Rect& area,
+                            int pad,
+                            const std::string& title,
+                            const std::string& x_label,
+                            const std::string& y_label) {
+  if (!title.empty()) {
+    double scale = st.title();
+    while (scale > 0.3 && TextSize(title, scale, st.stroke() + 1).width > img.cols - 2 * pad) {
+      scale *= 0.9;
+    }
+    Text(img,
+         title,
+         img.cols / 2.0,
+         pad,
+         scale,
+         kBlack,
+         st.stroke() + 1,
+         HAlign::kCenter,
+         VAlign::kTop);
+  }
+  if (!x_label.empty()) {
+    Text(img,
+         x_label,
+         area.x + area.width / 2.0,
+         img.rows - pad - 2,
+         st.label(),
+         kBlack,
+         st.stroke(),
+         HAlign::kCenter,
+         VAlign::kBaseline);
+  }
+  if (!y_label.empty()) {
+    const cv::Size ts = TextSize(y_label, st.label(), st.stroke());
+    RotatedText(img,
+                y_label,
+                pad,
+                area.y + area.height / 2 - ts.width / 2,
+                st.label(),
+                kBlack,
+                st.stroke());
+  }
+}
+
+}  // namespace
+
 // ---------------------------------------------------------------------------------------------
 // Line plots
 // ---------------------------------------------------------------------------------------------
@@ -659,43 +709,7 @@ std::vector<unsigned char> RenderLinePlotPng(const LinePlot& plot) {
   }
 
   // 7. Title and axis labels.
-  if (!plot.title.empty()) {
-    double scale = st.title();
-    while (scale > 0.3 &&
-           TextSize(plot.title, scale, st.stroke() + 1).width > plot.width - 2 * pad) {
-      scale *= 0.9;
-    }
-    Text(img,
-         plot.title,
-         plot.width / 2.0,
-         pad,
-         scale,
-         kBlack,
-         st.stroke() + 1,
-         HAlign::kCenter,
-         VAlign::kTop);
-  }
-  if (!plot.x_label.empty()) {
-    Text(img,
-         plot.x_label,
-         area.x + area.width / 2.0,
-         plot.height - pad - 2,
-         st.label(),
-         kBlack,
-         st.stroke(),
-         HAlign::kCenter,
-         VAlign::kBaseline);
-  }
-  if (!plot.y_label.empty()) {
-    const cv::Size ts = TextSize(plot.y_label, st.label(), st.stroke());
-    RotatedText(img,
-                plot.y_label,
-                pad,
-                area.y + area.height / 2 - ts.width / 2,
-                st.label(),
-                kBlack,
-                st.stroke());
-  }
+  DrawTitleAndAxisLabels(img, st, area, pad, plot.title, plot.x_label, plot.y_label);
 
   // 8. Legend.
   std::vector<const LineSeries*> entries;
@@ -941,41 +955,7 @@ std::vector<unsigned char> RenderHeatmapPng(const Heatmap& map) {
   }
 
   // 4. Title and labels.
-  if (!map.title.empty()) {
-    double scale = st.title();
-    while (scale > 0.3 && TextSize(map.title, scale, st.stroke() + 1).width > map.width - 2 * pad)
-      scale *= 0.9;
-    Text(img,
-         map.title,
-         map.width / 2.0,
-         pad,
-         scale,
-         kBlack,
-         st.stroke() + 1,
-         HAlign::kCenter,
-         VAlign::kTop);
-  }
-  if (!map.x_label.empty()) {
-    Text(img,
-         map.x_label,
-         area.x + area.width / 2.0,
-         map.height - pad - 2,
-         st.label(),
-         kBlack,
-         st.stroke(),
-         HAlign::kCenter,
-         VAlign::kBaseline);
-  }
-  if (!map.y_label.empty()) {
-    const cv::Size ts = TextSize(map.y_label, st.label(), st.stroke());
-    RotatedText(img,
-                map.y_label,
-                pad,
-                area.y + area.height / 2 - ts.width / 2,
-                st.label(),
-                kBlack,
-                st.stroke());
-  }
+  DrawTitleAndAxisLabels(img, st, area, pad, map.title, map.x_label, map.y_label);
   return EncodePng(img);
 }
 
