@@ -276,27 +276,35 @@ void ProcessChain(const std::complex<float>* xf,
           reinterpret_cast<const float*>(child + static_cast<size_t>(2 * i + 1) * mc);
       const float* o = reinterpret_cast<const float*>(odd);
       float* e = reinterpret_cast<float*>(env);
-      // Two samples at a time with vector shuffles (mc is a multiple of 64, see FftFastSize),
-      // accumulating the moments on the way (|c|^2 in float, sums in double).
-      typedef float F4 __attribute__((vector_size(16)));
+      // Four samples of each at a time with vector shuffles (mc is a multiple of 64, see
+      // FftFastSize), accumulating the moments on the way (|c|^2 in float, sums in double).
       typedef float F8 __attribute__((vector_size(32)));
       typedef double D4 __attribute__((vector_size(32)));
-      D4 acc2 = {0, 0, 0, 0}, acc4 = {0, 0, 0, 0};
-      for (int s = 0; s < mc; s += 2) {
-        F4 l, u, d;
+      D4 acc2 = {0, 0, 0, 0}, acc4 = {0, 0, 0, 0}, acc2b = acc2, acc4b = acc4;
+      for (int s = 0; s < mc; s += 4) {
+        F8 l, u, d;
         std::memcpy(&l, lower + 2 * s, sizeof(l));
         std::memcpy(&u, upper + 2 * s, sizeof(u));
         std::memcpy(&d, o + 2 * s, sizeof(d));
-        const F4 sum = l + u;
-        const F8 mixed = __builtin_shufflevector(sum, d, 0, 1, 4, 5, 2, 3, 6, 7);
-        std::memcpy(e + 4 * s, &mixed, sizeof(mixed));
-        const F4 a = sum * sum, c = d * d;
-        const F4 power =
-            __builtin_shufflevector(a, c, 0, 2, 4, 6) + __builtin_shufflevector(a, c, 1, 3, 5, 7);
-        const D4 pd = __builtin_convertvector(power, D4);
-        acc2 += pd;
-        acc4 += pd * pd;
+        const F8 sum = l + u;  // even samples 2s, 2s+2, 2s+4, 2s+6
+        const F8 first = __builtin_shufflevector(sum, d, 0, 1, 8, 9, 2, 3, 10, 11);
+        const F8 second = __builtin_shufflevector(sum, d, 4, 5, 12, 13, 6, 7, 14, 15);
+        std::memcpy(e + 4 * s, &first, sizeof(first));
+        std::memcpy(e + 4 * s + 8, &second, sizeof(second));
+        const F8 a = sum * sum, c = d * d;
+        const F8 power = __builtin_shufflevector(a, c, 0, 2, 4, 6, 8, 10, 12, 14) +
+                         __builtin_shufflevector(a, c, 1, 3, 5, 7, 9, 11, 13, 15);
+        const D4 lo4 =
+            __builtin_convertvector(__builtin_shufflevector(power, power, 0, 1, 2, 3), D4);
+        const D4 hi4 =
+            __builtin_convertvector(__builtin_shufflevector(power, power, 4, 5, 6, 7), D4);
+        acc2 += lo4;
+        acc4 += lo4 * lo4;
+        acc2b += hi4;
+        acc4b += hi4 * hi4;
       }
+      acc2 += acc2b;
+      acc4 += acc4b;
       const double sum2 = (acc2[0] + acc2[1]) + (acc2[2] + acc2[3]);
       const double sum4 = (acc4[0] + acc4[1]) + (acc4[2] + acc4[3]);
       row[i] = sum2 > 0 ? std::max(0.0, mp * sum4 / (sum2 * sum2) - 2.0) : 0.0;
