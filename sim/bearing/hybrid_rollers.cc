@@ -14,6 +14,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kMaxKernel = 64;
+// Safety factor on the contacts' stable step (the solver scales only the element step).
+constexpr double kContactSafety = 0.8;
 
 double Wrap(double a) {  // to (-pi, pi]
   a = std::remainder(a, 2.0 * kPi);
@@ -208,9 +210,35 @@ HybridRollers::HybridRollers(const Scene& scene,
       throw InputError("hybrid model: spread_half_width_m covers more than 64 raceway nodes");
   }
 
-  // Stable step of the contacts: stiffness at twice the radial load (a conservative bound),
-  // roller side (normal + tangential springs of both races on the roller's effective mass m/3)
-  // and ring-node side (largest kernel weight, damped oscillator limit).
+  // Ring side of an outer-race contact: the gap is delta = (roller) - sum_i w_i u_i, so the
+  // contact couples the roller with the raceway nodes through K = k w~ w~^T, w~ = (1, -w). Its
+  // one non-zero mode has omega^2 = k (1/m_roller + sum_i w_i^2 / m_i): the ring acts as ONE
+  // body of effective mass m_ring = 1 / sum_i w_i^2/m_i (the kernel's nodes, weighted), taken at
+  // its smallest over the kernel's positions between two nodes.
+  {
+    int idx[kMaxKernel];
+    double w[kMaxKernel], s_max = 0.0;
+    for (int s = 0; s <= 10; ++s) {
+      const int n = Kernel(ring_theta0_ + 0.05 * s * ring_dtheta_, idx, w);
+      for (int k = 0; k < static_cast<int>(ring_nodes_.size()); k += 1) {
+        // every kernel position around the ring (node masses may differ near the seat)
+        double sum = 0.0;
+        for (int i = 0; i < n; ++i) {
+          const int id = ring_nodes_[(idx[i] + k) % ring_nodes_.size()];
+          sum += w[i] * w[i] / state.mass[id];
+        }
+        s_max = std::max(s_max, sum);
+      }
+    }
+    ring_mass_ = 1.0 / s_max;
+  }
+  // Stable step of the contacts (the normal and the stick spring act together; stiffness at
+  // twice the radial load, a bound on impacts): each contact is a two-body oscillator with
+  // damping zeta of ITS critical value (reduced mass), so the central-difference limit is
+  // 2/omega (sqrt(1 + zeta^2) - zeta) with
+  //  - roller side: both races' springs on the roller's rim (effective mass m/3: translation
+  //    plus rotation for a tangential force on a disc), omega^2 = 2 k (3/m_r);
+  //  - ring side: omega^2 = k (3/m_r + 1/m_ring) for one contact on the ring's kernel nodes.
   {
     const double q = 2.0 * std::max(load, 1000.0);
     const double delta = std::pow(q / k_c_, 0.9);
@@ -218,22 +246,11 @@ HybridRollers::HybridRollers(const Scene& scene,
     double m_min = roller_mass_[0];
     for (double m : roller_mass_) m_min = std::min(m_min, m);
     const double zeta = options_.contact_damping_ratio;
-    const double k_roller = 2.0 * kn * (1.0 + options_.tangential_stiffness_ratio);
-    const double w_roller = std::sqrt(k_roller / (m_min / 3.0));
-    double dt = 2.0 / w_roller * (std::sqrt(1 + zeta * zeta) - zeta);
-    int idx[kMaxKernel];
-    double w[kMaxKernel], w_max = 0;
-    for (int s = 0; s <= 10; ++s) {
-      const int n = Kernel(ring_theta0_ + 0.05 * s * ring_dtheta_, idx, w);
-      for (int i = 0; i < n; ++i) w_max = std::max(w_max, w[i]);
-    }
-    double node_mass = HUGE_VAL;
-    for (int id : ring_nodes_) node_mass = std::min(node_mass, state.mass[id]);
-    const double k_node = w_max * w_max * kn * (1.0 + options_.tangential_stiffness_ratio);
-    const double w_node = std::sqrt(k_node / node_mass);
-    const double zeta_node = zeta * std::sqrt(m_min / node_mass) * w_max;
-    dt = std::min(dt, 2.0 / w_node * (std::sqrt(1 + zeta_node * zeta_node) - zeta_node));
-    dt_limit_ = 0.5 * dt;
+    const double k = kn * (1.0 + options_.tangential_stiffness_ratio);
+    auto limit = [zeta](double omega) { return 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta); };
+    roller_dt_ = limit(std::sqrt(2.0 * k * 3.0 / m_min));
+    ring_dt_ = limit(std::sqrt(k * (3.0 / m_min + 1.0 / ring_mass_)));
+    dt_limit_ = kContactSafety * std::min(roller_dt_, ring_dt_);
   }
 
   friction_.assign(4 * z, 0.0);
@@ -363,7 +380,12 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
   // One contact (1 or 2 points) of roller j with a counter body; returns the normal force.
   auto contact = [&](int j, int body, bool palmgren, Point* pts, int npts, double* spring) {
     const Body& b = rollers_[j];
-    const double m = roller_mass_[j];
+    // Damping of each contact: a fraction of ITS critical value, i.e. with the reduced mass of
+    // the roller and the counter body (LS-DYNA's viscous contact damping does the same with the
+    // slave and master nodal masses); for the ring, its kernel's effective mass.
+    const double m_counter = body == 0 ? ring_mass_ : body == 1 ? shaft_mass_ : cage_mass_;
+    const double m = 1.0 / (1.0 / roller_mass_[j] + 1.0 / m_counter);
+    const double m_t = 1.0 / (3.0 / roller_mass_[j] + 1.0 / m_counter);
     double q[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0;
     double tx = -pts[0].ny, ty = pts[0].nx;
     for (int k = 0; k < npts; ++k) {
@@ -400,7 +422,7 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
     const double mu = mu_d + (mu_s - mu_d) * std::exp(-decay * std::abs(vt));
     const double cap = mu * q_total;
     const double kt = options_.tangential_stiffness_ratio * kn_total;
-    const double ct = 2.0 * zeta * std::sqrt(kt * m / 3.0);
+    const double ct = 2.0 * zeta * std::sqrt(kt * m_t);
     const double fs = std::clamp(*spring - kt * vt * dt, -cap, cap);
     const double f = std::clamp(fs - ct * vt, -cap, cap);
     *spring = fs;

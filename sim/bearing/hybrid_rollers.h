@@ -30,8 +30,9 @@
 //    roller's extent towards a wall is its support function (the spall corners when the spall
 //    faces the wall); linear spring. Radially each pocket holds its roller within
 //    +-cage_radial_play of the pitch radius (roller-guided cage), linear spring beyond.
-//  - every contact: normal damping (fraction of critical for the roller's mass on the contact's
-//    tangent stiffness), regularised Coulomb friction mu = mu_d + (mu_s - mu_d) exp(-decay |v|)
+//  - every contact: normal damping (fraction of critical of the contact's two-body oscillator:
+//    reduced mass of the roller and the counter body, the ring's kernel effective mass for the
+//    outer race), regularised Coulomb friction mu = mu_d + (mu_s - mu_d) exp(-decay |v|)
 //    with a tangential spring (stick) capped at mu Q.
 // Time integration: the same central-difference scheme as the solver, inside AddForces: forces
 // at x^n with velocities v^(n-1/2), then v^(n+1/2) and x^(n+1) for every rigid body.
@@ -125,6 +126,11 @@ class HybridRollers : public solver::ForceContributor {
   double shaft_mass() const { return shaft_mass_; }
   double contact_stiffness() const { return k_c_; }  // K_c, N/m^(10/9)
   double spread_half_width() const { return spread_; }
+  // Effective mass of the raceway under one contact's kernel, 1 / max sum_i w_i^2 / m_i (kg).
+  double ring_contact_mass() const { return ring_mass_; }
+  // Contact stable steps (s, before the safety factor 0.8): roller side and ring side.
+  double roller_time_step() const { return roller_dt_; }
+  double ring_time_step() const { return ring_dt_; }
   // Circle centre of roller j (world).
   void RollerCentre(int j, double* x, double* y) const;
   // Normal contact force magnitudes on roller j at the last step (N, whole section).
@@ -153,7 +159,7 @@ class HybridRollers : public solver::ForceContributor {
   std::vector<double> pocket_angle_;  // pocket j centre line in the cage frame
   double cage_mass_ = 0, cage_inertia_ = 0, shaft_mass_ = 0;
   double pocket_half_width_ = 0, pitch_radius_ = 0, outer_radius_ = 0, inner_radius_ = 0;
-  double k_c_ = 0, spread_ = 0, dt_limit_ = 0;
+  double k_c_ = 0, spread_ = 0, dt_limit_ = 0, ring_mass_ = 0, roller_dt_ = 0, ring_dt_ = 0;
   // Raceway nodes sorted by reference angle (uniform): ids, theta0, spacing, radial unit vectors.
   std::vector<int> ring_nodes_;
   std::vector<double> ring_ex_, ring_ey_;

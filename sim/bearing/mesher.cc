@@ -278,6 +278,8 @@ fe::Mesh MakeCage(const SceneGeometry& g,
   return mesh;
 }
 
+constexpr double kHousingAdapterFirstLayer = 3.0;
+
 // Layer fractions from the seat (0) to the bottom (1) of the adapter: the first layer about
 // `first` thick, each next one up to 15 % thicker, at most `largest`, scaled to fill `height`.
 std::vector<double> AdapterLayers(double height, double first, double largest) {
@@ -292,15 +294,26 @@ std::vector<double> AdapterLayers(double height, double first, double largest) {
   return cum;
 }
 
-fe::Mesh MakeAdapter(
-    const SceneGeometry& g, int ring_nodes, double seat_radius, const Scene& scene, double* width) {
+// `first_layer_scale`: the first layer's thickness in contact sizes. The seat meets the block's
+// vertical sides at 90 deg - asin(width / 2 seat radius) (40 deg for the paper's 40 mm block on
+// the 52 mm ring): the corner elements are skewed, and with a first layer of one contact size
+// they set the time step (area / long diagonal 0.1 mm at 0.25 mm). The hybrid model, whose step
+// is otherwise set by the ring elements, uses 3.
+fe::Mesh MakeAdapter(const SceneGeometry& g,
+                     int ring_nodes,
+                     double seat_radius,
+                     const Scene& scene,
+                     double* width,
+                     double first_layer_scale = 1.0) {
   const double dth = 2 * kPi / ring_nodes;
   const double half = std::asin(std::min(0.999, 0.5 * g.adapter_width_m / seat_radius));
   const int kk = std::max(1, static_cast<int>(std::lround(half / dth)));
   *width = 2 * seat_radius * std::sin(kk * dth);
   const double y_bottom = -seat_radius - g.adapter_height_m;
-  const std::vector<double> t =
-      AdapterLayers(g.adapter_height_m, scene.mesh.contact_size_m, scene.mesh.adapter_size_m);
+  const std::vector<double> t = AdapterLayers(
+      g.adapter_height_m,
+      first_layer_scale * scene.mesh.contact_size_m,
+      std::max(scene.mesh.adapter_size_m, first_layer_scale * scene.mesh.contact_size_m));
   const int ny = static_cast<int>(t.size()) - 1;
   PartBuilder b("adapter");
   std::vector<std::vector<int>> ids(2 * kk + 1, std::vector<int>(ny + 1));
@@ -416,7 +429,8 @@ BearingMesh MeshBearingHousing(const Scene& scene) {
   Rename(&outer, "outer_ring.outer", "outer_ring.outside");
   std::vector<fe::Mesh> parts;
   parts.push_back(std::move(outer));
-  parts.push_back(MakeAdapter(g, os.n_theta, os.outer_radius, scene, &out.adapter_width_m));
+  parts.push_back(MakeAdapter(
+      g, os.n_theta, os.outer_radius, scene, &out.adapter_width_m, kHousingAdapterFirstLayer));
   out.mesh = fe::MergeMeshes(parts);
   fe::ValidateMesh(out.mesh);
   return out;

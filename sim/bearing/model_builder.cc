@@ -254,7 +254,10 @@ std::string BearingModel::Describe() const {
        << " nodes; Palmgren K_c = " << h.contact_stiffness() / std::pow(1e3, 10.0 / 9.0) * 1e-3
        << " kN/mm^(10/9), spread +-" << h.spread_half_width() * 1e3 << " mm, roller mass "
        << h.roller_mass(0) * 1e3 << " g, cage " << h.cage_mass() * 1e3 << " g, inner ring "
-       << h.shaft_mass() * 1e3 << " g; ring-adapter tie " << tie_->num_pairs() << " node pairs";
+       << h.shaft_mass() * 1e3 << " g; ring-adapter tie " << tie_->num_pairs() << " node pairs"
+       << "\ncontact stable step: roller side " << h.roller_time_step() * 1e9 << " ns, ring side "
+       << h.ring_time_step() * 1e9 << " ns (raceway kernel mass " << h.ring_contact_mass() * 1e6
+       << " mg), x 0.8";
     for (const SensorChannel& c : channels_)
       os << "\nsensor " << c.sensor << " " << c.direction << ": node " << c.node << " ("
          << c.distance_m * 1e3 << " mm from the point)";

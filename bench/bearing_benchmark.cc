@@ -1,0 +1,57 @@
+// Cost of the bearing simulation, hybrid model (sim/bearing/hybrid_rollers.h): wall time per
+// simulated millisecond of the paper's verification scene at 6000 rpm with its spall, after the
+// speed ramp (the contacts are all live), for housing meshes of 2.0, 1.0 and 0.5 mm. One
+// iteration = 0.1 ms of simulated time; the counters give ms of wall per simulated ms, the
+// time step and ns per element-cycle (elements + hybrid contacts + tie + damping).
+// Run: build-<you>/bench/bearing_benchmark [--benchmark_min_time=2]
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <string>
+
+#include "sim/bearing/model_builder.h"
+#include "sim/bearing/scene.h"
+
+namespace {
+
+using namespace spallkit::sim;
+
+void BM_HybridSimulatedMs(benchmark::State& bs) {
+  const double mesh_mm = static_cast<double>(bs.range(0)) / 100.0;
+  const Scene scene =
+      LoadScene(std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml",
+                {"model.fidelity=hybrid",
+                 "mesh.size_mm=" + std::to_string(mesh_mm),
+                 "operation.speed_rpm=6000",
+                 "operation.ramp_s=0.0005",
+                 "solver.threads=1"});
+  BearingModel model(scene);
+  spallkit::solver::ExplicitSolver& s = model.solver();
+  s.Run(0.001);  // past the ramp
+  constexpr double kChunk = 1e-4;
+  long steps = 0;
+  double wall = 0.0;
+  for (auto _ : bs) {
+    const long s0 = s.step();
+    const auto t0 = std::chrono::steady_clock::now();
+    s.Run(s.time() + kChunk);
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    steps += s.step() - s0;
+  }
+  const double simulated_ms = bs.iterations() * kChunk * 1e3;
+  const double elements = model.bearing_mesh().mesh.num_elements();
+  bs.counters["wall_ms_per_sim_ms"] = 1e3 * wall / simulated_ms;
+  bs.counters["dt_ns"] = 1e9 * kChunk * bs.iterations() / static_cast<double>(steps);
+  bs.counters["elements"] = elements;
+  bs.counters["ns_per_element_cycle"] = 1e9 * wall / (static_cast<double>(steps) * elements);
+}
+BENCHMARK(BM_HybridSimulatedMs)
+    ->Arg(200)
+    ->Arg(100)
+    ->Arg(50)
+    ->Unit(benchmark::kMillisecond)
+    ->ArgName("mesh_x100_mm");
+
+}  // namespace
+
+BENCHMARK_MAIN();
