@@ -102,6 +102,7 @@ struct ChainBuffers {
   FftwArray<std::complex<float>> child, parent;  // all envelopes of a row, node after node
   FftwArray<std::complex<float>> in, odd;        // one node's transform input and output
   std::vector<std::complex<float>> roots;        // e^{2 pi i j / m_top}
+  std::vector<std::complex<float>> row_roots;    // the current row's e^{2 pi i j / m_p}
   std::unique_ptr<double[]> power;
 };
 
@@ -254,6 +255,10 @@ void ProcessChain(const std::complex<float>* xf,
     const int mp = up.m, mc = up.m / 2;
     const int stride = m_top / mp;
     ComplexFftF fft(mc, +1);
+    // This row's roots, e^{2 pi i j / m_p} = roots[j * stride], gathered once into a contiguous
+    // table: read in place, every bin's factor would be its own cache line of the m_top table.
+    b.row_roots.resize(mp);
+    for (int j = 0; j < mp; ++j) b.row_roots[j] = b.roots[static_cast<size_t>(j) * stride];
     std::vector<double>& row = (*result)[up.row];
     row.assign(up.nodes, 0.0);
     std::complex<float>* odd = in + mc;  // second half of the node buffer (size m_top >= 2 mc)
@@ -268,7 +273,7 @@ void ProcessChain(const std::complex<float>* xf,
       }
       SPALLKIT_CHECK(hi - lo <= mc, "kurtogram node of " << hi - lo << " bins, m " << mc);
       std::fill(in, in + mc, std::complex<float>(0.0f));
-      PlaceBins(xf + lo, lo, hi, mc, b.roots.data(), mp, stride, in);
+      PlaceBins(xf + lo, lo, hi, mc, b.row_roots.data(), mp, 1, in);
       fft.Execute(in, odd);
       // Even samples: the sum of the children; interleaved with the odd ones.
       const float* lower = reinterpret_cast<const float*>(child + static_cast<size_t>(2 * i) * mc);
