@@ -379,10 +379,27 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
 
   // Node energies by Parseval (analytic weights). A node holding less than kEmptyNode of the
   // record's energy carries only rounding residue, whose kurtosis is meaningless: reported as 0.
+  // sum |X_k|^2 with vector accumulators (a plain loop is a serial chain of additions), then
+  // the edge bins' analytic weights (1/4 of their energy) as corrections.
   double total_energy = 0;
-  for (int k = 0; k < bins; ++k) {
-    const bool edge = (k == 0) || (2 * k == n);
-    total_energy += (edge ? 0.25 : 1.0) * std::norm(x[k]);
+  {
+    typedef double D4 __attribute__((vector_size(32)));
+    const double* v = reinterpret_cast<const double*>(x.data());
+    const int count = 2 * bins;
+    D4 a = {0, 0, 0, 0}, b = a;
+    int j = 0;
+    for (; j + 8 <= count; j += 8) {
+      D4 p, q;
+      std::memcpy(&p, v + j, sizeof(p));
+      std::memcpy(&q, v + j + 4, sizeof(q));
+      a += p * p;
+      b += q * q;
+    }
+    a += b;
+    total_energy = (a[0] + a[1]) + (a[2] + a[3]);
+    for (; j < count; ++j) total_energy += v[j] * v[j];
+    total_energy -= 0.75 * std::norm(x[0]);
+    if (2 * (bins - 1) == n) total_energy -= 0.75 * std::norm(x[bins - 1]);
   }
   const double scale = total_energy > 0 ? 1.0 / std::sqrt(total_energy / bins) : 1.0;
   constexpr double kEmptyNode = 1e-20;
