@@ -193,6 +193,19 @@ void PlaceBins(const std::complex<float>* in,
   }
 }
 
+// Zeroes the positions of out[0, m) that PlaceBins(lo, hi, m, ...) does not write (bins sit at
+// k mod m, so they cover a circular run of hi - lo positions from lo mod m): a parent's bins
+// fill about all of its half-size grid, so clearing the whole buffer first was mostly wasted.
+void ZeroOutsideBins(int lo, int hi, int m, std::complex<float>* out) {
+  const int count = hi - lo;
+  if (count >= m) return;
+  const int start = (lo + count) % m;  // first position after the run
+  const int zeros = m - count;
+  const int first = std::min(zeros, m - start);
+  std::fill(out + start, out + start + first, std::complex<float>(0.0f));
+  std::fill(out, out + (zeros - first), std::complex<float>(0.0f));
+}
+
 // Kurtosis of every node of one chain, written to result[row].
 //
 // Every node's envelope is sampled on its row's grid of m points over the record, with each bin
@@ -239,7 +252,7 @@ void ProcessChain(const std::complex<float>* xf,
         std::fill(env, env + m, std::complex<float>(0.0f));
         continue;
       }
-      std::fill(in, in + m, std::complex<float>(0.0f));
+      ZeroOutsideBins(lo, hi, m, in);
       PlaceBins(xf + lo, lo, hi, m, nullptr, 1, 1, in);
       fft.Execute(in, env);
       row[i] = EnvelopeKurtosis(env, m, b.power.get());
@@ -272,7 +285,7 @@ void ProcessChain(const std::complex<float>* xf,
         continue;
       }
       SPALLKIT_CHECK(hi - lo <= mc, "kurtogram node of " << hi - lo << " bins, m " << mc);
-      std::fill(in, in + mc, std::complex<float>(0.0f));
+      ZeroOutsideBins(lo, hi, mc, in);
       PlaceBins(xf + lo, lo, hi, mc, b.row_roots.data(), mp, 1, in);
       fft.Execute(in, odd);
       // Even samples: the sum of the children; interleaved with the odd ones.
