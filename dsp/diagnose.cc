@@ -24,7 +24,7 @@ bool DiagnoseOptions::IsValid(std::string* error) const {
   if (!(false_alarm_probability > 0.0 && false_alarm_probability < 1.0))
     return fail("false-alarm probability must be in (0, 1)");
   if (kurtogram_max_level < 0) return fail("kurtogram level must be >= 0");
-  if (max_bands < 0) return fail("max bands must be >= 0 (0 = all candidates)");
+  if (first_bands < 0) return fail("first bands must be >= 0 (0 = all candidates at once)");
   if (floor_window_bins < 21) return fail("floor window must be >= 21 bins");
   if (!(line_p_value > 0.0 && line_p_value < 1.0)) return fail("line p-value must be in (0, 1)");
   if (!(min_modulation >= 0.0 && min_modulation < 10.0))
@@ -88,21 +88,22 @@ struct BandResult {
   double best_p = 1.0;
 };
 
-// The candidates to search: all of them, or the max_bands of highest spectral kurtosis (kept in
-// the kurtogram's order, which the band comparison's tie rule follows).
-std::vector<KurtogramNode> StrongestBands(const std::vector<KurtogramNode>& candidates,
-                                          int max_bands) {
-  if (max_bands <= 0 || static_cast<int>(candidates.size()) <= max_bands) return candidates;
+// Search order: the first_bands candidates of highest spectral kurtosis (stage 1), then the rest
+// (stage 2); each stage in the kurtogram's order, which the band comparison's tie rule follows.
+// first_bands = 0 or >= all: one stage.
+std::vector<std::vector<KurtogramNode>> SearchStages(const std::vector<KurtogramNode>& candidates,
+                                                     int first_bands) {
+  if (first_bands <= 0 || static_cast<int>(candidates.size()) <= first_bands) return {candidates};
   std::vector<int> order(candidates.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     return candidates[a].kurtosis > candidates[b].kurtosis;
   });
-  order.resize(max_bands);
-  std::sort(order.begin(), order.end());
-  std::vector<KurtogramNode> out;
-  for (int i : order) out.push_back(candidates[i]);
-  return out;
+  std::vector<char> first(candidates.size(), 0);
+  for (int i = 0; i < first_bands; ++i) first[order[i]] = 1;
+  std::vector<std::vector<KurtogramNode>> stages(2);
+  for (size_t i = 0; i < candidates.size(); ++i) stages[first[i] ? 0 : 1].push_back(candidates[i]);
+  return stages;
 }
 
 // Mean of the squared envelope |c|^2 of a band, in the SES level's units: with the
@@ -263,8 +264,8 @@ Diagnosis Diagnose(const Record& record,
   if (candidates.empty())
     throw InputError("diagnose: no demodulation band of width >= " + Fmt("%.0f", alpha_need) +
                      " Hz fits below fs/2 = " + Fmt("%.0f", 0.5 * fs) + " Hz");
-  d.eligible_bands = static_cast<int>(candidates.size());
-  candidates = StrongestBands(candidates, options.max_bands);
+  // Bonferroni over every candidate band, searched or not: the early stop below only ever
+  // searches fewer, so the false-alarm design is the same as searching them all.
   d.candidate_bands = static_cast<int>(candidates.size());
   d.multiplicity = double(kFamilies) * d.candidate_bands;
 
@@ -286,42 +287,52 @@ Diagnosis Diagnose(const Record& record,
   std::optional<BandResult> best;
   std::optional<BandResult> kurt_choice;
   bool kurt_choice_is_best = false;
-  for (const auto& node : candidates) {
-    BandResult r;
-    r.node = node;
-    const Band band = node.band();
-    const double max_alpha = std::min(band.width_hz(), alpha_need + floor_half * df);
-    // SES power (level^2) in single precision: the transforms are most of a band's cost, and
-    // the floor, z and p-values need ~6 digits, not 15 (dsp/envelope.h).
-    const std::vector<double> power = analyzer.SesPowerFast(band, max_alpha, &r.envelope_size);
-    r.normalized = NormalizeSpectrum(power, df, dopt);
-    r.normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
-    // Cage first: when its comb is detected, its harmonics are non-evidence for the inner race
-    // and rolling element (f_b ~ 11.8 f_c for a 6205).
-    const FamilyDetection cage = DetectFamily(r.normalized, d.families[3], ctx, dopt);
-    DetectionContext others = ctx;
-    if (cage.detected) others.exclude_harmonics_of_hz.push_back(cage.fundamental_hz);
-    // Not for the outer race: BPFO = Z f_c exactly, so its lines are always cage harmonics.
-    r.detections.push_back(DetectFamily(r.normalized, d.families[0], ctx, dopt));
-    for (int i = 1; i < 3; ++i)
-      r.detections.push_back(DetectFamily(r.normalized, d.families[i], others, dopt));
-    r.detections.push_back(cage);
-    for (const auto& det : r.detections) r.best_p = std::min(r.best_p, det.p_value);
-    const bool is_kurtogram_best =
-        std::abs(node.center_hz - d.kurtogram.best.center_hz) < 1e-9 &&
-        std::abs(node.bandwidth_hz - d.kurtogram.best.bandwidth_hz) < 1e-9;
-    const bool becomes_best = !best || BandKey(r) > BandKey(*best);
-    const bool becomes_kurt_choice =
-        !kurt_choice ||
-        (!kurt_choice_is_best && (is_kurtogram_best || node.kurtosis > kurt_choice->node.kurtosis));
-    if (becomes_kurt_choice) {
-      kurt_choice_is_best = is_kurtogram_best;
-      if (becomes_best)
-        kurt_choice = r;  // a copy: both keep it
-      else
-        kurt_choice = std::move(r);
+  // Stage 1, the most impulsive bands; stage 2, the others, only when stage 1 detected no
+  // family. Detection is not aligned with kurtosis (the family rule wants >= 2 harmonics each
+  // modulating >= min_modulation of the band's mean SE, which a resonance's flank can satisfy
+  // and its centre not), so a healthy-looking stage 1 never ends the search.
+  bool detected_any = false;
+  for (const auto& stage : SearchStages(candidates, options.first_bands)) {
+    if (detected_any) break;
+    for (const auto& node : stage) {
+      ++d.searched_bands;
+      BandResult r;
+      r.node = node;
+      const Band band = node.band();
+      const double max_alpha = std::min(band.width_hz(), alpha_need + floor_half * df);
+      // SES power (level^2) in single precision: the transforms are most of a band's cost, and
+      // the floor, z and p-values need ~6 digits, not 15 (dsp/envelope.h).
+      const std::vector<double> power = analyzer.SesPowerFast(band, max_alpha, &r.envelope_size);
+      r.normalized = NormalizeSpectrum(power, df, dopt);
+      r.normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
+      // Cage first: when its comb is detected, its harmonics are non-evidence for the inner race
+      // and rolling element (f_b ~ 11.8 f_c for a 6205).
+      const FamilyDetection cage = DetectFamily(r.normalized, d.families[3], ctx, dopt);
+      DetectionContext others = ctx;
+      if (cage.detected) others.exclude_harmonics_of_hz.push_back(cage.fundamental_hz);
+      // Not for the outer race: BPFO = Z f_c exactly, so its lines are always cage harmonics.
+      r.detections.push_back(DetectFamily(r.normalized, d.families[0], ctx, dopt));
+      for (int i = 1; i < 3; ++i)
+        r.detections.push_back(DetectFamily(r.normalized, d.families[i], others, dopt));
+      r.detections.push_back(cage);
+      for (const auto& det : r.detections) r.best_p = std::min(r.best_p, det.p_value);
+      const bool is_kurtogram_best =
+          std::abs(node.center_hz - d.kurtogram.best.center_hz) < 1e-9 &&
+          std::abs(node.bandwidth_hz - d.kurtogram.best.bandwidth_hz) < 1e-9;
+      const bool becomes_best = !best || BandKey(r) > BandKey(*best);
+      const bool becomes_kurt_choice =
+          !kurt_choice || (!kurt_choice_is_best &&
+                           (is_kurtogram_best || node.kurtosis > kurt_choice->node.kurtosis));
+      if (becomes_kurt_choice) {
+        kurt_choice_is_best = is_kurtogram_best;
+        if (becomes_best)
+          kurt_choice = r;  // a copy: both keep it
+        else
+          kurt_choice = std::move(r);
+      }
+      for (const auto& det : r.detections) detected_any |= det.detected;
+      if (becomes_best) best = std::move(r);
     }
-    if (becomes_best) best = std::move(r);
   }
 
   // Without any significant comb, report the band the kurtogram prefers (among candidates).
@@ -471,7 +482,7 @@ std::string Diagnosis::ToJson(int indent) const {
                {"kurtosis", band_kurtosis},
                {"selection", band_selection},
                {"candidates", candidate_bands},
-               {"eligible", eligible_bands}};
+               {"searched", searched_bands}};
   j["kurtogram"] = {{"best_center_hz", kurtogram_best.center_hz},
                     {"best_bandwidth_hz", kurtogram_best.bandwidth_hz},
                     {"best_level", kurtogram_best.level},
@@ -548,7 +559,7 @@ std::string Diagnosis::BriefReport() const {
   std::snprintf(buf,
                 sizeof buf,
                 "band: %.0f-%.0f Hz (centre %.0f Hz, width %.0f Hz, kurtogram level %.1f, "
-                "kurtosis %.2f), chosen by %s among %d candidates\n",
+                "kurtosis %.2f), chosen by %s among %d candidates (%d searched)\n",
                 band.low_hz,
                 band.high_hz,
                 band.center_hz(),
@@ -556,7 +567,8 @@ std::string Diagnosis::BriefReport() const {
                 band_level,
                 band_kurtosis,
                 band_selection == "kurtogram" ? "kurtogram" : "fault evidence",
-                candidate_bands);
+                candidate_bands,
+                searched_bands);
   out += buf;
   std::snprintf(buf,
                 sizeof buf,

@@ -43,11 +43,11 @@ struct DiagnoseOptions {
   int floor_window_bins = 401;            // running-median window of the SES floor
   double line_p_value = 1e-3;             // "individually significant" line
   double min_modulation = 0.12;           // ...and modulating >= this fraction of mean(SE)
-  // Candidate bands searched: the max_bands of highest spectral kurtosis among the eligible
-  // nodes (0 = all). Each band searched costs an SES, a floor and four combs, and widens the
-  // Bonferroni factor; see docs/DIAGNOSIS.md for why the kurtosis ranking keeps the false-alarm
-  // design.
-  int max_bands = 16;
+  // Search the first_bands candidates of highest spectral kurtosis first, and the others only
+  // when none of those shows a detected family (0: all in one go). The Bonferroni factor counts
+  // every candidate either way, so the false-alarm design does not change; a faulty record
+  // usually stops after the first stage (each band costs an SES, a floor and four combs).
+  int first_bands = 16;
 
   bool IsValid(std::string* error) const;
 };
@@ -63,8 +63,8 @@ struct Diagnosis {
   double band_level = 0.0;     // kurtogram level of that node
   std::string band_selection;  // "fault_evidence" or "kurtogram"
   KurtogramNode kurtogram_best;
-  int candidate_bands = 0;    // bands searched (the Bonferroni factor's band count)
-  int eligible_bands = 0;     // nodes that met the width/position rule, before max_bands
+  int candidate_bands = 0;    // nodes that met the width/position rule (the Bonferroni count)
+  int searched_bands = 0;     // of those, searched before a detection stopped the search
   double multiplicity = 0.0;  // families x candidate bands (Bonferroni factor on top of combs)
 
   BearingFrequencies kinematics;  // at the nominal speed

@@ -1,7 +1,8 @@
-// Candidate-band limit (DiagnoseOptions::max_bands): at 48 kHz the width rule admits 64 kurtogram
-// nodes and the diagnosis searches the 16 of highest spectral kurtosis. The false-alarm design
-// must hold with the smaller Bonferroni factor (4 families x 16 bands) on records where the
-// selection is active, and a fault must be found as with every band searched.
+// Staged band search (DiagnoseOptions::first_bands): at 48 kHz the width rule admits 64 kurtogram
+// nodes; the 16 of highest spectral kurtosis are searched first and the rest only when those show
+// no detected family. The Bonferroni factor always counts all 64, healthy records are searched in
+// full (so their false-alarm rate is that of the full search), and a fault is found as with every
+// band searched.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,7 +24,7 @@ Record MakeRecord(const FaultSignalSpec& spec) {
   return r;
 }
 
-TEST(DiagnoseBands, SearchesTheHighestKurtosisBandsOnly) {
+TEST(DiagnoseBands, FaultStopsTheSearchEarlyWithTheSameVerdict) {
   const BearingGeometry g = CatalogBearing("6205");
   const BearingFrequencies f = ComputeFrequencies(g, 29.95);
   FaultSignalSpec s;
@@ -37,30 +38,26 @@ TEST(DiagnoseBands, SearchesTheHighestKurtosisBandsOnly) {
   s.shaft_amplitude = 0.5;
   s.mains_amplitude = 0.2;
   const Record r = MakeRecord(s);
-  const Diagnosis limited = Diagnose(r, g, f.shaft_hz);
+  const Diagnosis staged = Diagnose(r, g, f.shaft_hz);
   DiagnoseOptions all;
-  all.max_bands = 0;
+  all.first_bands = 0;
   const Diagnosis full = Diagnose(r, g, f.shaft_hz, all);
-  SCOPED_TRACE(limited.BriefReport() + full.BriefReport());
-  EXPECT_EQ(full.eligible_bands, 64);
+  SCOPED_TRACE(staged.BriefReport() + full.BriefReport());
   EXPECT_EQ(full.candidate_bands, 64);
-  EXPECT_EQ(limited.eligible_bands, 64);
-  EXPECT_EQ(limited.candidate_bands, 16);
-  EXPECT_DOUBLE_EQ(limited.multiplicity, 4.0 * 16);
-  // The searched bands are the most impulsive: the chosen band holds the resonance.
-  EXPECT_LE(limited.band.low_hz, 12000.0);
-  EXPECT_GE(limited.band.high_hz, 12000.0);
-  EXPECT_EQ(limited.verdict, "outer_race");
+  EXPECT_EQ(full.searched_bands, 64);
+  EXPECT_EQ(staged.candidate_bands, 64);
+  EXPECT_DOUBLE_EQ(staged.multiplicity, 4.0 * 64);
+  EXPECT_DOUBLE_EQ(full.multiplicity, 4.0 * 64);
+  EXPECT_TRUE(staged.searched_bands == 16 || staged.searched_bands == 64) << staged.searched_bands;
+  EXPECT_EQ(staged.verdict, "outer_race");
   EXPECT_EQ(full.verdict, "outer_race");
-  ASSERT_NE(limited.Best(), nullptr);
-  EXPECT_NEAR(limited.Best()->fundamental_hz / s.rate_hz, 1.0, 1e-3);
-  // Fewer tests, smaller correction: the same comb is at least as significant.
-  EXPECT_LE(limited.Best()->p_value, full.Best()->p_value * (1 + 1e-9));
+  ASSERT_NE(staged.Best(), nullptr);
+  EXPECT_NEAR(staged.Best()->fundamental_hz / s.rate_hz, 1.0, 1e-3);
 }
 
-// As Diagnose.HealthyRecordsFalseAlarmRateWithinDesign, at 48 kHz where the band limit is active
-// (64 eligible nodes, 16 searched): choosing bands by kurtosis (the envelope's amplitude
-// distribution) must not inflate the comb statistics (z = P / local floor, scale-free).
+// As Diagnose.HealthyRecordsFalseAlarmRateWithinDesign, at 48 kHz where the staged search is
+// active (64 candidates, 16 in the first stage): a record without a detected family is searched
+// in full, and the false-alarm rate stays within the design.
 TEST(DiagnoseBands, HealthyRecordsAt48kHzFalseAlarmRateWithinDesign) {
   const BearingGeometry g = CatalogBearing("6205");
   const BearingFrequencies f = ComputeFrequencies(g, 29.95);
@@ -77,6 +74,9 @@ TEST(DiagnoseBands, HealthyRecordsAt48kHzFalseAlarmRateWithinDesign) {
       s.seed = 7000 + seed;
       const Diagnosis d = Diagnose(MakeRecord(s), g, f.shaft_hz, o);
       if (d.verdict != "healthy") ++alarms;
+      if (d.verdict == "healthy") {
+        EXPECT_EQ(d.searched_bands, 64);
+      }
       searched = d.candidate_bands;
       FaultSignalSpec t = s;
       t.seed = 9000 + seed;
@@ -88,7 +88,7 @@ TEST(DiagnoseBands, HealthyRecordsAt48kHzFalseAlarmRateWithinDesign) {
       t.extra_line_amplitude = 0.3;
       if (Diagnose(MakeRecord(t), g, f.shaft_hz, o).verdict != "healthy") ++alarms_lines;
     }
-    EXPECT_EQ(searched, 16);
+    EXPECT_EQ(searched, 64);
     const double margin = 3.0 * std::sqrt(alpha * (1 - alpha) / kRecords);
     EXPECT_LE(alarms / double(kRecords), alpha + margin) << "alpha " << alpha;
     EXPECT_LE(alarms_lines / double(kRecords), alpha + margin) << "alpha " << alpha;
