@@ -142,21 +142,22 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
     start = std::clamp(start, 1, n - w);
     anchor_floor[a] = SelectKth(power.data() + start, w, w / 2, scratch.data()) / std::numbers::ln2;
   }
-  // Linear interpolation between anchors.
-  size_t a = 0;
+  // Linear interpolation between anchors, segment by segment (loops that vectorise; the same
+  // arithmetic as a bin-by-bin walk). Bins up to the first anchor take its value.
   const double tiny = std::numeric_limits<double>::min();
-  for (int i = 1; i < n; ++i) {
-    while (a + 1 < anchors.size() && anchors[a + 1] < i) ++a;
-    double f;
-    if (a + 1 >= anchors.size() || i <= anchors[a]) {
-      f = anchor_floor[a];
-    } else {
-      const double t = double(i - anchors[a]) / double(anchors[a + 1] - anchors[a]);
-      f = (1.0 - t) * anchor_floor[a] + t * anchor_floor[a + 1];
+  double* fl = out.floor.data();
+  double* z = out.z.data();
+  for (int i = 1; i <= anchors[0] && i < n; ++i) fl[i] = std::max(anchor_floor[0], tiny);
+  for (size_t a = 0; a + 1 < anchors.size(); ++a) {
+    const int i0 = anchors[a], i1 = anchors[a + 1];
+    const double f0 = anchor_floor[a], f1 = anchor_floor[a + 1];
+    const double span = double(i1 - i0);
+    for (int i = i0 + 1; i <= i1; ++i) {
+      const double t = double(i - i0) / span;
+      fl[i] = std::max((1.0 - t) * f0 + t * f1, tiny);
     }
-    out.floor[i] = std::max(f, tiny);
-    out.z[i] = power[i] / out.floor[i];
   }
+  for (int i = 1; i < n; ++i) z[i] = power[i] / fl[i];
   out.floor[0] = out.floor.size() > 1 ? out.floor[1] : 1.0;
   out.z[0] = 0.0;
   return out;
@@ -318,9 +319,17 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
   const int i_lo = std::clamp(static_cast<int>(std::floor(f_low * s_lo / df)) - 2, 0, nbins - 1);
   const int i_hi = std::clamp(static_cast<int>(std::ceil(f_top / df)) + 2, i_lo, nbins - 1);
   std::vector<double> pair_score(i_hi - i_lo + 1, -1.0);  // < 0: not computed yet
+  // -ln p for p = q (2 - q) (PairPValue), q = (1 + z/n)^-n (BinTail): with L = -ln q,
+  // -ln p = L - log1p(1 - q), which avoids a log of p near 1 (glibc's slow path there made it
+  // the costliest call of the comb search); capped at -ln 1e-300 as p was floored there.
+  const double n_eff = spectrum.effective_samples;
+  const double score_cap = std::min(options.max_line_score, -std::log(1e-300));
   auto pair_score_of = [&](int i) {
-    const double p = spectrum.PairPValue(std::max(spectrum.z[i], spectrum.z[i + 1]));
-    return std::min(-std::log(std::max(p, 1e-300)), options.max_line_score);
+    const double zmax = std::max(spectrum.z[i], spectrum.z[i + 1]);
+    if (!(zmax > 0.0)) return 0.0;
+    const double minus_log_q = n_eff * std::log1p(zmax / n_eff);
+    const double q = std::exp(-minus_log_q);
+    return std::min(minus_log_q - std::log1p(1.0 - q), score_cap);
   };
   auto score_at = [&](int i) {
     if (i < i_lo || i > i_hi) return pair_score_of(i);
