@@ -90,6 +90,9 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
 
   // Adapter bottom fixed.
   solver_->FixNodes(NodeSet(mesh, "adapter.bottom"), true, true);
+  // Rigid adapter (scene model.adapter = "rigid"): all its nodes fixed, and the outer ring's
+  // nodes tied to the seat (below) with them.
+  if (scene_.model.adapter == "rigid") solver_->FixNodes(NodeSet(mesh, "adapter.all"), true, true);
 
   // Shaft: inner-ring bore as a rigid body, rotation prescribed, translation free, load down.
   const double omega = scene_.operation.inner_ring_speed_rad_s;
@@ -171,6 +174,11 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
         throw InputError(os.str());
       }
       pairs.emplace_back(best, a);
+    }
+    if (scene_.model.adapter == "rigid") {
+      std::vector<int> ring_seat;
+      for (const auto& p : pairs) ring_seat.push_back(p.first);
+      solver_->FixNodes(ring_seat, true, true);
     }
     tie_ = std::make_unique<TiedNodes>("ring_adapter_tie", std::move(pairs));
     solver_->AddContributor(tie_.get());

@@ -468,6 +468,9 @@ Scene ParseScene(const std::string& toml_text,
     scene.model.fidelity = s.String("fidelity", "fe");
     if (scene.model.fidelity != "fe" && scene.model.fidelity != "hybrid")
       s.Fail("fidelity", "expected \"fe\" or \"hybrid\", got \"" + scene.model.fidelity + "\"");
+    scene.model.adapter = s.String("adapter", "elastic");
+    if (scene.model.adapter != "elastic" && scene.model.adapter != "rigid")
+      s.Fail("adapter", "expected \"elastic\" or \"rigid\", got \"" + scene.model.adapter + "\"");
     s.RejectUnknown();
   }
   {

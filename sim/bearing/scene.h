@@ -101,6 +101,10 @@ struct SceneRun {
 //    apply to the outer ring and adapter only and need not resolve the spalls.
 struct SceneModel {
   std::string fidelity = "fe";
+  // "elastic": the adapter is FE (steel, scene materials.adapter); "rigid": every adapter node
+  // fixed, so the outer ring is held rigidly over the seat (Table 1 gives the adapter no
+  // material; docs/BEARING_MODEL.md, "Harris-Jones with the real housing").
+  std::string adapter = "elastic";
 };
 
 struct SceneSolver {
