@@ -7,12 +7,16 @@
 #   2. `spall diagnose` on the simulated acceleration: out/report.txt, out/report.json,
 #      out/plots/*.png;
 #   3. the same diagnosis of the bundled sample record: out/sample_report.txt/.json.
-# SPALLKIT_SIM_SETS overrides the simulation settings (e.g. a finer mesh or longer run).
+# SPALLKIT_SIM_SETS overrides the simulation settings (e.g. a finer mesh or longer run);
+# SPALLKIT_SPALL=path/to/spall runs the pipeline with an already built binary (no install, no
+# build: for checking the job from an engineer's own build folder); SPALLKIT_OUT sets the folder.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
-bash scripts/build.sh
-SPALL=build/apps/spall
+if [[ -z "${SPALLKIT_SPALL:-}" ]]; then
+  bash scripts/install-deps.sh
+  bash scripts/build.sh
+fi
+SPALL=${SPALLKIT_SPALL:-build/apps/spall}
 OUT=${SPALLKIT_OUT:-out}
 mkdir -p "$OUT/plots"
 
