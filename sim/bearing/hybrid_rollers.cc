@@ -31,13 +31,29 @@ double RollerProfile::HalfAngle() const {
   return spalled ? std::asin(std::min(1.0, 0.5 * width / radius)) : 0.0;
 }
 
+namespace {
+// Fillet centre in the spall frame (u lateral, v along the spall axis), u >= 0 side.
+void FilletCentre(const RollerProfile& p, double* u, double* v) {
+  const double rho = p.edge_radius, a = 0.5 * p.width;
+  *u = a + rho;
+  *v = std::sqrt(std::max(0.0, (p.radius - rho) * (p.radius - rho) - *u * *u));
+}
+}  // namespace
+
+double RollerProfile::ContactHalfAngle() const {
+  if (!spalled) return 0.0;
+  double u, v;
+  FilletCentre(*this, &u, &v);
+  return std::atan2(u, v);
+}
+
 bool RollerProfile::InSpall(double a) const {
-  return spalled && std::abs(Wrap(a - angle)) < HalfAngle();
+  return spalled && std::abs(Wrap(a - angle)) < ContactHalfAngle();
 }
 
 void RollerProfile::RimCorners(double cx[2], double cy[2]) const {
-  const double a = 0.5 * width;
-  const double s = std::sqrt(std::max(0.0, radius * radius - a * a));
+  double a, s;
+  FilletCentre(*this, &a, &s);
   const double c = std::cos(angle), sn = std::sin(angle);
   // Spall frame: v along the spall direction (c, sn), u lateral (-sn, c).
   for (int k = 0; k < 2; ++k) {
@@ -52,7 +68,7 @@ double RollerProfile::Support(double a) const {
   double cx[2], cy[2];
   RimCorners(cx, cy);
   const double ux = std::cos(a), uy = std::sin(a);
-  return std::max(cx[0] * ux + cy[0] * uy, cx[1] * ux + cy[1] * uy);
+  return std::max(cx[0] * ux + cy[0] * uy, cx[1] * ux + cy[1] * uy) + edge_radius;
 }
 
 RollerProfile::Properties RollerProfile::SectionProperties() const {
@@ -61,12 +77,22 @@ RollerProfile::Properties RollerProfile::SectionProperties() const {
   double area = kPi * r * r, moment = 0.0, polar = 0.5 * kPi * r * r * r * r;
   if (spalled) {
     // Spall region in its own frame: v in [r - h, r], |u| < min(w/2, sqrt(r^2 - v^2)).
+    // With fillets the removed strip at v is wider above the fillet centre (v > v_f): up to
+    // the fillet arc u = u_f - sqrt(rho^2 - (v - v_f)^2), then the circle.
     const int n = 20000;
     const double v0 = r - depth, dv = depth / n;
+    double uf, vf;
+    FilletCentre(*this, &uf, &vf);
     double as = 0.0, ms = 0.0, is = 0.0;
     for (int i = 0; i < n; ++i) {
       const double v = v0 + (i + 0.5) * dv;
-      const double a = std::min(0.5 * width, std::sqrt(std::max(0.0, r * r - v * v)));
+      const double circle = std::sqrt(std::max(0.0, r * r - v * v));
+      double wall = 0.5 * width;
+      if (edge_radius > 0 && v > vf) {
+        const double dz = v - vf;
+        wall = dz < edge_radius ? uf - std::sqrt(edge_radius * edge_radius - dz * dz) : circle;
+      }
+      const double a = std::min(wall, circle);
       as += 2.0 * a * dv;
       ms += 2.0 * a * v * dv;
       is += (2.0 * a * v * v + 2.0 / 3.0 * a * a * a) * dv;
@@ -142,6 +168,12 @@ HybridRollers::HybridRollers(const Scene& scene,
                            " must be narrower than the roller diameter and shallower than its "
                            "radius");
         p.spalled = true, p.width = d.width_m, p.depth = d.depth_m, p.angle = phi + d.angle_rad;
+        p.edge_radius = d.edge_radius_m;
+        if (!(p.edge_radius >= 0) || !(p.radius - p.edge_radius > 0.5 * p.width + p.edge_radius) ||
+            !(p.edge_radius < p.depth))
+          throw InputError("defects: edge_radius_mm of roller " + std::to_string(j) +
+                           " must be >= 0, smaller than the spall depth, and leave the fillet "
+                           "inside the roller");
       }
     const RollerProfile::Properties sp = p.SectionProperties();
     profiles_.push_back(p);
@@ -320,6 +352,8 @@ int HybridRollers::RacePoints(int j, int which, Point out[2]) const {
     out[0] = {cx + p.radius * dx, cy + p.radius * dy, -dx, -dy, 0.0};
     return 1;
   }
+  // Rim edges: the fillet centres (the corners for sharp edges); the caller offsets them by
+  // the fillet radius along the race normal through each.
   double kx[2], ky[2];
   p.RimCorners(kx, ky);
   const double c = std::cos(b.angle), s = std::sin(b.angle);
@@ -444,21 +478,28 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
     Point pts[2];
     // Outer race.
     int n = RacePoints(j, 0, pts);
+    const double rho = profiles_[j].edge_radius;
     for (int k = 0; k < n; ++k) {
-      const double th = std::atan2(pts[k].py, pts[k].px);
-      pts[k].delta = std::hypot(pts[k].px, pts[k].py) - RaceRadius(state, th);
-      if (n == 2) {  // the corners' own normals (race curvature)
+      if (n == 2) {  // rim edge: its own normal (race curvature), fillet surface point
         const double d = std::hypot(pts[k].px, pts[k].py);
         pts[k].nx = -pts[k].px / d, pts[k].ny = -pts[k].py / d;
+        pts[k].px -= rho * pts[k].nx, pts[k].py -= rho * pts[k].ny;
       }
+      const double th = std::atan2(pts[k].py, pts[k].px);
+      pts[k].delta = std::hypot(pts[k].px, pts[k].py) - RaceRadius(state, th);
     }
     outer_force_[j] = contact(j, 0, true, pts, n, &friction_[4 * j]);
     // Inner race (rigid ring on the shaft).
     n = RacePoints(j, 1, pts);
     for (int k = 0; k < n; ++k) {
       const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y, d = std::hypot(ex, ey);
-      pts[k].delta = inner_radius_ - d;
-      if (n == 2) pts[k].nx = ex / d, pts[k].ny = ey / d;
+      if (n == 2) {  // rim edge: normal through the fillet centre, surface point rho closer
+        pts[k].nx = ex / d, pts[k].ny = ey / d;
+        pts[k].px -= rho * pts[k].nx, pts[k].py -= rho * pts[k].ny;
+        pts[k].delta = inner_radius_ - (d - rho);
+      } else {
+        pts[k].delta = inner_radius_ - d;
+      }
     }
     inner_force_[j] = contact(j, 1, true, pts, n, &friction_[4 * j + 1]);
     // Cage pocket walls: straight lines +-W/2 from the pocket's centre line.

@@ -53,17 +53,24 @@ namespace spallkit::sim {
 
 // Exact section of a roller: circle of radius r, optionally with a flat-bottomed rectangular
 // spall (chord width w at the surface, parallel walls, bottom at depth h below the intact
-// surface) centred on body-frame direction `angle`.
+// surface) centred on body-frame direction `angle`. The two rim edges (wall meets circle) are
+// sharp (edge_radius = 0) or rounded by a fillet of radius rho tangent to the wall and the
+// circle; a race then touches a rim edge on its fillet circle.
 struct RollerProfile {
   double radius = 0.0;
   bool spalled = false;
-  double width = 0.0, depth = 0.0, angle = 0.0;
+  double width = 0.0, depth = 0.0, angle = 0.0, edge_radius = 0.0;
 
   // Half the angle the spall cuts out of the circle: asin(w / 2r).
   double HalfAngle() const;
-  // True when body-frame direction a (rad) points into the spall.
+  // Half-angle of the directions in which the spall's hull (the rim edges) rather than the
+  // circle is the extreme of the profile: the direction of a fillet centre, atan2(a + rho, v_f);
+  // = HalfAngle() for sharp edges.
+  double ContactHalfAngle() const;
+  // True when body-frame direction a (rad) points into the spall (|a - angle| < ContactHalfAngle).
   bool InSpall(double a) const;
-  // The spall's two rim corners (body frame, relative to the circle centre).
+  // The centres of the two rim fillets (body frame, relative to the circle centre); the rim
+  // corners themselves for sharp edges. A rim edge is the circle of radius edge_radius there.
   void RimCorners(double cx[2], double cy[2]) const;
   // Support function: max over the profile of p . (cos a, sin a), p from the circle centre.
   double Support(double a) const;

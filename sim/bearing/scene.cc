@@ -423,6 +423,7 @@ Scene ParseScene(const std::string& toml_text,
       d.width_m = s.Number("width_mm", 1.38, kPositive) * kMm;
       d.depth_m = s.Number("depth_mm", 0.59, kPositive) * kMm;
       d.angle_rad = s.Number("angle_deg", 0.0, {-360.0, 360.0}) * kPi / 180.0;
+      d.edge_radius_m = s.Number("edge_radius_mm", 0.0, {0.0, 1.0}) * kMm;
       s.RejectUnknown();
       if (!(d.width_m < roller_d))
         s.Fail("width_mm",

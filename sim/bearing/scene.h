@@ -35,6 +35,9 @@ struct Defect {
   double width_m = 1.38e-3;
   double depth_m = 0.59e-3;
   double angle_rad = 0.0;
+  // Fillet radius of the spall's two rim edges (hybrid model; 0 = sharp, the FE mesher's edges
+  // are sharp to the element size).
+  double edge_radius_m = 0.0;
 };
 
 // Bearing section geometry. Raceway diameters are NOMINAL (zero clearance); the mesher opens

@@ -60,6 +60,51 @@ TEST(RollerProfileTest, SectionPropertiesAreExact) {
   EXPECT_FALSE(p.InSpall(p.angle + 1.1 * std::asin(w / (2 * r))));
 }
 
+TEST(RollerProfileTest, RoundedSpallEdgesAreExact) {
+  // Fillets of radius rho on both rim edges: area against an independent point count of the
+  // removed region (spall rectangle + the corner regions outside the fillet circles), support
+  // facing the spall = fillet centre + rho, and the support continuous where contact passes
+  // from a fillet to the circle (at ContactHalfAngle).
+  RollerProfile p;
+  p.radius = 3.25e-3, p.spalled = true, p.width = 1.38e-3, p.depth = 0.59e-3, p.angle = 0.0;
+  p.edge_radius = 0.2e-3;
+  const double r = p.radius, a = 0.5 * p.width, rho = p.edge_radius;
+  const double uf = a + rho, vf = std::sqrt((r - rho) * (r - rho) - uf * uf);
+  const double el = std::hypot(uf, vf), eu = uf / el, ev = vf / el;
+  auto removed = [&](double u, double v) {  // spall frame: v along the axis, u lateral
+    if (u * u + v * v >= r * r || v <= r - p.depth) return false;
+    const double au = std::abs(u);
+    if (au < a) return true;
+    const double du = au - uf, dv = v - vf;
+    if (du * du + dv * dv <= rho * rho) return false;
+    // between the wall direction (-1, 0) and the radial direction e, through (0, 1)
+    return eu * dv - ev * du >= 0 && dv >= 0;
+  };
+  const double h = 0.25e-6;
+  double count = 0;
+  for (double v = r - p.depth + 0.5 * h; v < r; v += h)
+    for (double u = -r + 0.5 * h; u < r; u += h) count += removed(u, v);
+  const double area_removed = count * h * h;
+  const RollerProfile::Properties props = p.SectionProperties();
+  const double sharp_removed = kPi * r * r - [&] {
+    RollerProfile q = p;
+    q.edge_radius = 0;
+    return q.SectionProperties().area;
+  }();
+  std::printf("removed area: sharp %.6f mm^2, rounded %.6f (point count %.6f)\n",
+              sharp_removed * 1e6,
+              (kPi * r * r - props.area) * 1e6,
+              area_removed * 1e6);
+  EXPECT_GT(kPi * r * r - props.area, sharp_removed);
+  EXPECT_NEAR(kPi * r * r - props.area, area_removed, 2e-3 * area_removed);
+  EXPECT_NEAR(p.Support(p.angle), vf + rho, 1e-15);
+  EXPECT_NEAR(p.ContactHalfAngle(), std::atan2(uf, vf), 1e-15);
+  EXPECT_GT(p.ContactHalfAngle(), p.HalfAngle());
+  const double b = p.ContactHalfAngle();
+  EXPECT_NEAR(p.Support(b - 1e-9), r, 1e-12);
+  EXPECT_DOUBLE_EQ(p.Support(b + 1e-9), r);
+}
+
 // Static (0 rpm) load distribution, averaged over the last millisecond.
 std::vector<double> StaticOuterForces(const std::vector<std::string>& extra, double* shaft_y) {
   std::vector<std::string> sets = {
