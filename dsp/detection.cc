@@ -300,6 +300,12 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
         return true;
       }
     }
+    for (const ExplainedLine& e : context.explained) {
+      if (std::abs(f - e.freq_hz) <= e.half_width_hz) {
+        if (why) *why = ComponentName(e.by);
+        return true;
+      }
+    }
     if (f / df + 1.0 >= nbins - 1 || f <= 0.0) {
       if (why) *why = "range";
       return true;
@@ -386,6 +392,12 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
         const double m = std::max(1.0, std::nearbyint(f[g] * inv));
         excluded[g] |= std::abs(f[g] - m * base) <= guard[g];
       }
+    }
+    // Lines explained by a family ranked before (usually none reach this line's range).
+    for (const ExplainedLine& e : context.explained) {
+      if (e.freq_hz + e.half_width_hz < fl * s_lo || e.freq_hz - e.half_width_hz > fl * s_hi)
+        continue;
+      for (int g = 0; g < grid; ++g) excluded[g] |= std::abs(f[g] - e.freq_hz) <= e.half_width_hz;
     }
     for (int g = 0; g < grid; ++g) bin[g] = excluded[g] ? -1 : static_cast<int>(std::floor(q[g]));
     for (int g = 0; g < grid; ++g) {

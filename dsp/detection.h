@@ -96,6 +96,16 @@ struct LineEvidence {
   std::string exclusion;  // "shaft", "mains", "range", "" otherwise
 };
 
+// An SES line accounted for by a detected family: its measured (sub-bin) position and the
+// half-width of the window in which other families' lines count as the same line.
+struct ExplainedLine {
+  double freq_hz = 0.0;
+  double half_width_hz = 0.0;
+  double score = 0.0;  // capped -ln p of the line (its evidence)
+  int bin = 0;         // the SES bin of its peak
+  FaultComponent by = FaultComponent::kOuterRace;
+};
+
 // Where the search is centred and how many tests the caller makes in total.
 struct DetectionContext {
   double shaft_hz = 0.0;            // nominal shaft speed f_r
@@ -108,6 +118,10 @@ struct DetectionContext {
   // cage fault's dense f_c comb would otherwise also feed the f_b (~ 12 f_c for a 6205) and
   // BPFO (= Z f_c) combs. Reported as exclusion "cage".
   std::vector<double> exclude_harmonics_of_hz;
+  // Lines already explained by a family ranked higher (joint explanation, dsp/explain.h): a comb
+  // line within half_width_hz of one of them is non-evidence, reported with the explaining
+  // family's name as its exclusion.
+  std::vector<ExplainedLine> explained;
 };
 
 struct FamilyDetection {

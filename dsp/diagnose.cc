@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "dsp/explain.h"
 #include "dsp/prewhiten.h"
 
 namespace spallkit::dsp {
@@ -305,16 +306,10 @@ Diagnosis Diagnose(const Record& record,
       const std::vector<double> power = analyzer.SesPowerFast(band, max_alpha, &r.envelope_size);
       r.normalized = NormalizeSpectrum(power, df, dopt);
       r.normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
-      // Cage first: when its comb is detected, its harmonics are non-evidence for the inner race
-      // and rolling element (f_b ~ 11.8 f_c for a 6205).
-      const FamilyDetection cage = DetectFamily(r.normalized, d.families[3], ctx, dopt);
-      DetectionContext others = ctx;
-      if (cage.detected) others.exclude_harmonics_of_hz.push_back(cage.fundamental_hz);
-      // Not for the outer race: BPFO = Z f_c exactly, so its lines are always cage harmonics.
-      r.detections.push_back(DetectFamily(r.normalized, d.families[0], ctx, dopt));
-      for (int i = 1; i < 3; ++i)
-        r.detections.push_back(DetectFamily(r.normalized, d.families[i], others, dopt));
-      r.detections.push_back(cage);
+      // Each family on its own here; which family explains which line is decided jointly on the
+      // chosen band (dsp/explain.h).
+      for (const auto& family : d.families)
+        r.detections.push_back(DetectFamily(r.normalized, family, ctx, dopt));
       for (const auto& det : r.detections) r.best_p = std::min(r.best_p, det.p_value);
       const bool is_kurtogram_best =
           std::abs(node.center_hz - d.kurtogram.best.center_hz) < 1e-9 &&
@@ -365,51 +360,28 @@ Diagnosis Diagnose(const Record& record,
   d.normalized = std::move(chosen.normalized);
   d.faults = std::move(chosen.detections);
 
-  // Measured rates before sorting (families are in kFaultComponents order here).
-  const FamilyDetection& rolling = d.faults[2];
-  const FamilyDetection& cage = d.faults[3];
-  if (rolling.detected) {
-    d.measured_f_b_hz = rolling.fundamental_hz;
-    // f_c from the sideband spacing around significant harmonics with both sidebands.
-    double sum = 0.0;
-    int count = 0;
-    for (const auto& h : rolling.lines) {
-      if (h.line.is_sideband()) continue;
-      const LineEvidence *lo = nullptr, *hi = nullptr;
-      for (const auto& s : rolling.lines) {
-        if (!s.line.is_sideband() || s.line.harmonic != h.line.harmonic || !s.significant) continue;
-        (s.line.sideband < 0 ? lo : hi) = &s;
-      }
-      if (lo && hi) {
-        sum += 0.5 * (hi->freq_hz - lo->freq_hz);
-        ++count;
-      }
+  // Joint explanation: the best family claims the lines it explains, the others are re-tested on
+  // what is left; ranked = explanation order, then the undetected by p-value.
+  JointExplanation joint = ExplainJointly(d.normalized, d.families, std::move(d.faults), ctx, dopt);
+  d.faults = std::move(joint.ranked);
+  d.explained_lines = std::move(joint.explained);
+  d.roller_integer_ratio_mismatch = joint.roller_integer_ratio_mismatch;
+
+  // Measured rates of a roller defect (f_b, f_c from its sidebands) or of a cage comb.
+  const double shaft_for_rates = shaft_measured ? *shaft_measured : shaft_hz;
+  for (const auto& det : d.faults) {
+    if (!det.detected) continue;
+    const FaultFamily& fam = d.families[static_cast<int>(det.component)];
+    if (det.component == FaultComponent::kRollingElement && !d.measured_f_b_hz) {
+      const FamilyRates r = MeasureRates(det, fam, kin.cage_hz, shaft_for_rates);
+      d.measured_f_b_hz = r.fundamental_hz;
+      if (r.sideband_measured) d.measured_f_c_hz = r.sideband_hz;
     }
-    if (count > 0) d.measured_f_c_hz = sum / count;
+    if (det.component == FaultComponent::kCage && !d.measured_f_c_hz)
+      d.measured_f_c_hz = det.fundamental_hz;
   }
-  if (!d.measured_f_c_hz && cage.p_value <= options.false_alarm_probability &&
-      cage.significant_harmonics >= 1)
-    d.measured_f_c_hz = cage.fundamental_hz;
   if (d.measured_f_b_hz) d.f_b_slip_percent = (*d.measured_f_b_hz / kin.f_b_hz - 1.0) * 100.0;
   if (d.measured_f_c_hz) d.f_c_slip_percent = (*d.measured_f_c_hz / kin.cage_hz - 1.0) * 100.0;
-
-  // Ranking: detected first, then by significance (score margin over the threshold, which
-  // orders like -log p but does not saturate at p = 0).
-  std::stable_sort(d.faults.begin(), d.faults.end(), [](const auto& a, const auto& b) {
-    if (a.detected != b.detected) return a.detected;
-    // A roller fault is modulated at the cage rate, so its SES also carries f_c lines: when
-    // both are detected, the roller family (f_b lines) explains the cage lines, not vice versa.
-    if (a.detected && a.component == FaultComponent::kRollingElement &&
-        b.component == FaultComponent::kCage)
-      return true;
-    if (b.detected && b.component == FaultComponent::kRollingElement &&
-        a.component == FaultComponent::kCage)
-      return false;
-    if (a.detected && a.harmonic_evidence != b.harmonic_evidence)
-      return a.harmonic_evidence > b.harmonic_evidence;
-    if (a.p_value != b.p_value) return a.p_value < b.p_value;
-    return a.score - a.threshold > b.score - b.threshold;
-  });
   d.verdict = d.faults.front().detected ? ComponentName(d.faults.front().component) : "healthy";
   return d;
 }
@@ -495,6 +467,16 @@ std::string Diagnosis::ToJson(int indent) const {
                      {"f_b_hz", kinematics.f_b_hz},
                      {"bpfo_hz", kinematics.bpfo_hz},
                      {"bpfi_hz", kinematics.bpfi_hz}};
+  ordered_json explained = ordered_json::array();
+  for (const auto& e : explained_lines)
+    explained.push_back({{"frequency_hz", e.freq_hz},
+                         {"half_width_hz", e.half_width_hz},
+                         {"by", ComponentName(e.by)}});
+  j["explanation"] = {
+      {"roller_integer_ratio_mismatch",
+       std::isfinite(roller_integer_ratio_mismatch) ? ordered_json(roller_integer_ratio_mismatch)
+                                                    : ordered_json(nullptr)},
+      {"lines", explained}};
   j["measured"] = {{"shaft_hz", Opt(measured_shaft_hz)},
                    {"f_b_hz", Opt(measured_f_b_hz)},
                    {"f_c_hz", Opt(measured_f_c_hz)},

@@ -73,6 +73,11 @@ struct Diagnosis {
   std::optional<double> measured_f_b_hz, measured_f_c_hz;
   std::optional<double> f_b_slip_percent, f_c_slip_percent;  // measured / kinematic - 1, in %
 
+  // Lines claimed by the detected families (joint explanation, dsp/explain.h), claiming order.
+  std::vector<ExplainedLine> explained_lines;
+  // Rolling-element comb: f_b / f_sb relative distance to the nearest integer (NaN: not tested).
+  double roller_integer_ratio_mismatch = 0.0;
+
   TimeStatistics statistics;  // of the record as given (before pre-whitening)
   double sample_rate_hz = 0.0;
   int samples = 0;

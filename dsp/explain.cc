@@ -1,0 +1,271 @@
+#include "dsp/explain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+
+namespace spallkit::dsp {
+
+bool ExplanationOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!(match_bins >= 0.5 && match_bins <= 10.0)) return fail("match bins must be in [0.5, 10]");
+  if (!(window_bins >= 0.5 && window_bins <= 20.0)) return fail("window bins must be in [0.5, 20]");
+  if (sideband_orders < 0 || sideband_orders > 5) return fail("sideband orders must be in 0..5");
+  if (!(integer_ratio_tolerance >= 0.0 && integer_ratio_tolerance < 0.5))
+    return fail("integer ratio tolerance must be in [0, 0.5)");
+  return true;
+}
+
+namespace {
+
+const FaultFamily* FindFamily(const std::vector<FaultFamily>& families, FaultComponent c) {
+  for (const auto& f : families)
+    if (f.component == c) return &f;
+  return nullptr;
+}
+
+int HarmonicCount(const FaultFamily& family) {
+  int n = 0;
+  for (const auto& l : family.lines) n = std::max(n, l.harmonic);
+  return n;
+}
+
+// The strongest bin within `match` bins of f when it is a local maximum (a window edge that is
+// only the shoulder of a line outside does not count); -1 otherwise.
+int PeakNear(const NormalizedSpectrum& s, double f, double match) {
+  const double df = s.resolution_hz;
+  const int n = static_cast<int>(s.power.size());
+  const int lo = std::max(1, static_cast<int>(std::ceil(f / df - match)));
+  const int hi = std::min(n - 2, static_cast<int>(std::floor(f / df + match)));
+  if (lo > hi) return -1;
+  int best = lo;
+  for (int i = lo + 1; i <= hi; ++i)
+    if (s.power[i] > s.power[best]) best = i;
+  if (s.power[best] < s.power[best - 1] || s.power[best] < s.power[best + 1]) return -1;
+  return best;
+}
+
+// Cage rate refined on its own harmonics k f_c, k = 1..K, walking upward: each significant peak
+// found within the match window updates the least-squares rate, so the prediction for the next
+// harmonic carries the accumulated precision (a 0.1 % rate error is a bin at the 60th harmonic).
+double RefineRate(const NormalizedSpectrum& s,
+                  double f0,
+                  double max_hz,
+                  const DetectionOptions& options,
+                  const ExplanationOptions& explanation) {
+  if (!(f0 > 0.0)) return f0;
+  double num = 0.0, den = 0.0, rate = f0;
+  for (int k = 1; k * rate <= max_hz; ++k) {
+    const int i = PeakNear(s, k * rate, explanation.match_bins);
+    if (i < 0 || s.PairPValue(s.z[i]) > options.line_p_value) continue;
+    const double f = InterpolatePeakHz(s.power, i, s.resolution_hz);
+    num += k * f;
+    den += double(k) * k;
+    rate = num / den;
+  }
+  return rate;
+}
+
+}  // namespace
+
+FamilyRates MeasureRates(const FamilyDetection& det,
+                         const FaultFamily& family,
+                         double cage_hz,
+                         double shaft_hz) {
+  FamilyRates r;
+  r.fundamental_hz = det.fundamental_hz;
+  switch (family.component) {
+    case FaultComponent::kOuterRace:
+      r.sideband_hz = cage_hz * det.scale;
+      break;
+    case FaultComponent::kInnerRace:
+      r.sideband_hz = shaft_hz > 0.0 ? shaft_hz : family.sideband_hz * det.scale;
+      break;
+    case FaultComponent::kCage:
+      r.sideband_hz = 0.0;
+      break;
+    case FaultComponent::kRollingElement: {
+      r.sideband_hz = cage_hz * det.scale;
+      double sum = 0.0;
+      int count = 0;
+      for (const auto& h : det.lines) {
+        if (h.line.is_sideband() || h.excluded) continue;
+        const LineEvidence *lo = nullptr, *hi = nullptr;
+        for (const auto& sb : det.lines) {
+          if (!sb.line.is_sideband() || sb.line.harmonic != h.line.harmonic || !sb.significant)
+            continue;
+          (sb.line.sideband < 0 ? lo : hi) = &sb;
+        }
+        if (lo && hi) {
+          sum += 0.5 * (hi->freq_hz - lo->freq_hz);
+          ++count;
+        }
+      }
+      if (count == 0) {
+        // No harmonic with both sidebands (e.g. its carrier excluded as a shaft line): single
+        // significant sidebands against the measured k f_b.
+        for (const auto& sb : det.lines) {
+          if (!sb.line.is_sideband() || !sb.significant) continue;
+          sum += sb.line.sideband * (sb.freq_hz - sb.line.harmonic * det.fundamental_hz);
+          ++count;
+        }
+      }
+      if (count > 0) {
+        r.sideband_hz = sum / count;
+        r.sideband_measured = true;
+      }
+      break;
+    }
+  }
+  return r;
+}
+
+std::vector<double> PredictedLines(FaultComponent component,
+                                   const FamilyRates& rates,
+                                   int harmonics,
+                                   int sideband_orders,
+                                   double max_hz) {
+  std::vector<double> out;
+  const double f0 = rates.fundamental_hz, fsb = rates.sideband_hz;
+  if (!(f0 > 0.0)) return out;
+  auto add = [&](double f) {
+    if (f > 0.0 && f <= max_hz) out.push_back(f);
+  };
+  auto cluster = [&](double centre) {
+    add(centre);
+    if (fsb > 0.0)
+      for (int m = 1; m <= sideband_orders; ++m) {
+        add(centre - m * fsb);
+        add(centre + m * fsb);
+      }
+  };
+  switch (component) {
+    case FaultComponent::kOuterRace:
+    case FaultComponent::kInnerRace:
+      for (int k = 1; k <= harmonics; ++k) cluster(k * f0);
+      break;
+    case FaultComponent::kRollingElement:
+      for (int k = 1; k <= harmonics; ++k) {
+        cluster(k * f0);
+        cluster((k - 0.5) * f0);  // 1 x BSF series: alternating outer/inner race hits
+      }
+      // The load-zone modulation itself: the spall passes the load zone once per cage turn.
+      if (fsb > 0.0)
+        for (int m = 1; m <= harmonics; ++m) add(m * fsb);
+      break;
+    case FaultComponent::kCage:
+      for (int k = 1; k * f0 <= max_hz; ++k) add(k * f0);
+      break;
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<ExplainedLine> ClaimLines(const NormalizedSpectrum& spectrum,
+                                      const std::vector<double>& predicted_hz,
+                                      FaultComponent by,
+                                      const DetectionOptions& options,
+                                      const ExplanationOptions& explanation) {
+  std::vector<ExplainedLine> out;
+  const double df = spectrum.resolution_hz;
+  for (double f : predicted_hz) {
+    const int i = PeakNear(spectrum, f, explanation.match_bins);
+    if (i < 0) continue;
+    const double p = spectrum.PairPValue(spectrum.z[i]);
+    if (p > options.line_p_value) continue;
+    bool seen = false;
+    for (const auto& e : out) seen |= e.bin == i;
+    if (seen) continue;
+    ExplainedLine e;
+    e.bin = i;
+    e.freq_hz = InterpolatePeakHz(spectrum.power, i, df);
+    e.half_width_hz = explanation.window_bins * df + options.guard_fraction * e.freq_hz;
+    e.score = std::min(-std::log(std::max(p, 1e-300)), options.max_line_score);
+    e.by = by;
+    out.push_back(e);
+  }
+  return out;
+}
+
+JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
+                                const std::vector<FaultFamily>& families,
+                                std::vector<FamilyDetection> detections,
+                                const DetectionContext& context,
+                                const DetectionOptions& options,
+                                const ExplanationOptions& explanation) {
+  std::string error;
+  if (!explanation.IsValid(&error)) throw InputError("explanation: " + error);
+  if (detections.size() != families.size())
+    throw InputError("explanation: one detection per family expected");
+  JointExplanation out;
+  const FaultFamily* cage_family = FindFamily(families, FaultComponent::kCage);
+  const double cage_hz = cage_family ? cage_family->fundamental_hz : 0.0;
+  const double shaft_hz =
+      context.shaft_hz * (context.measured_shaft_scale > 0.0 ? context.measured_shaft_scale : 1.0);
+  const double max_hz = (static_cast<int>(spectrum.power.size()) - 2) * spectrum.resolution_hz;
+
+  // Is the roller comb only a dense cage comb? (see the header)
+  out.roller_integer_ratio_mismatch = std::numeric_limits<double>::quiet_NaN();
+  for (size_t i = 0; i < families.size(); ++i) {
+    if (families[i].component != FaultComponent::kRollingElement || !detections[i].detected)
+      continue;
+    const FamilyRates r = MeasureRates(detections[i], families[i], cage_hz, shaft_hz);
+    if (!r.sideband_measured || !(r.sideband_hz > 0.0)) continue;
+    const double ratio = r.fundamental_hz / r.sideband_hz;
+    const double n = std::max(1.0, std::round(ratio));
+    out.roller_integer_ratio_mismatch = ratio / n - 1.0;
+    out.roller_is_cage_comb =
+        std::abs(out.roller_integer_ratio_mismatch) <= explanation.integer_ratio_tolerance;
+  }
+
+  auto explains_first = [&](const FamilyDetection& a, const FamilyDetection& b) {
+    using C = FaultComponent;
+    const bool rc = a.component == C::kRollingElement && b.component == C::kCage;
+    const bool cr = a.component == C::kCage && b.component == C::kRollingElement;
+    if (rc) return !out.roller_is_cage_comb;
+    if (cr) return out.roller_is_cage_comb;
+    if (a.harmonic_evidence != b.harmonic_evidence)
+      return a.harmonic_evidence > b.harmonic_evidence;
+    return a.p_value < b.p_value;
+  };
+
+  DetectionContext ctx = context;
+  std::vector<int> remaining;
+  for (size_t i = 0; i < detections.size(); ++i) remaining.push_back(static_cast<int>(i));
+  while (true) {
+    int pick = -1;
+    for (int i : remaining)
+      if (detections[i].detected && (pick < 0 || explains_first(detections[i], detections[pick])))
+        pick = i;
+    if (pick < 0) break;
+    remaining.erase(std::find(remaining.begin(), remaining.end(), pick));
+    const FamilyDetection& det = detections[pick];
+    const FaultFamily& fam = families[pick];
+    FamilyRates rates = MeasureRates(det, fam, cage_hz, shaft_hz);
+    if (fam.component == FaultComponent::kCage)
+      rates.fundamental_hz =
+          RefineRate(spectrum, rates.fundamental_hz, max_hz, options, explanation);
+    const auto predicted = PredictedLines(
+        fam.component, rates, HarmonicCount(fam), explanation.sideband_orders, max_hz);
+    const auto claims = ClaimLines(spectrum, predicted, fam.component, options, explanation);
+    out.ranked.push_back(det);
+    out.explained.insert(out.explained.end(), claims.begin(), claims.end());
+    ctx.explained.insert(ctx.explained.end(), claims.begin(), claims.end());
+    for (int r : remaining) detections[r] = DetectFamily(spectrum, families[r], ctx, options);
+  }
+  std::vector<FamilyDetection> rest;
+  for (int i : remaining) rest.push_back(detections[i]);
+  std::stable_sort(rest.begin(), rest.end(), [](const auto& a, const auto& b) {
+    if (a.p_value != b.p_value) return a.p_value < b.p_value;
+    return a.score - a.threshold > b.score - b.threshold;
+  });
+  out.ranked.insert(out.ranked.end(), rest.begin(), rest.end());
+  return out;
+}
+
+}  // namespace spallkit::dsp

@@ -1,0 +1,104 @@
+// Joint explanation of the SES lines: which fault family accounts for which line.
+//
+// Why: the four families are not independent hypotheses. Their lines share a lattice of shaft and
+// cage combination frequencies, so one strong fault feeds the other combs:
+//   - a roller spall strikes at f_b, is load-zone modulated once per cage turn (lines k f_b +/- m
+//     f_c AND the modulation itself, m f_c), and its alternating outer/inner hits add 1 x BSF =
+//     f_b / 2; for an N205EM f_b - f_c = 12.85 f_c lies within 1 % of BPFO = 13 f_c, and the
+//     whole roller "forest" j BSF +/- m f_c lies within ~1 % of integer multiples of f_c (BSF =
+//     6.92 f_c), so both the outer-race and the cage combs light up;
+//   - BPFO = Z f_c exactly, so an outer-race comb is a sub-comb of a cage comb.
+// Testing each family alone (or letting one "exclude" another's harmonics within the +/- slip
+// tolerance) calls the cage or the outer race on a textbook roller spall. Instead: rank the
+// detected families, let the first one claim the lines it explains at their MEASURED sub-bin
+// positions (a window of a few bins, not the slip tolerance), re-test the others on what is left
+// with the same false-alarm control, and repeat.
+//
+// Ranking. A detected rolling-element comb (f_b harmonics with f_c sidebands) explains the cage
+// lines, unless its rate is an integer multiple of its own sideband spacing (f_b / f_sb within
+// integer_ratio_tolerance of an integer): then the "roller forest" is just a dense cage comb
+// (f_b / f_c = 2 (1 + d_m / d) is never an integer for the catalogue bearings: 13.85 N205EM, 11.83
+// 6205, 10.45 6203) and the cage explains it. Other pairs are ordered by harmonic evidence (mean
+// -ln p of the family's own harmonics, dsp/detection.h), which the lattice coincidences feed least.
+#pragma once
+
+#include <vector>
+
+#include "core/bearing.h"
+#include "dsp/detection.h"
+#include "dsp/fault_bands.h"
+
+namespace spallkit::dsp {
+
+struct ExplanationOptions {
+  // A predicted line takes the strongest SES bin within this many bins of its position...
+  double match_bins = 1.5;
+  // ...and claims the lines of other families within this many bins of that peak (+ the
+  // detection's guard fraction of the frequency for the slip smear of high harmonics).
+  double window_bins = 3.0;
+  // Sideband orders claimed around harmonics: +/- m f_c (rolling element, outer race), +/- m f_r
+  // (inner race), m = 1..sideband_orders.
+  int sideband_orders = 2;
+  // |f_b / (n f_sb) - 1| below this (n the nearest integer): the roller comb is a cage comb.
+  double integer_ratio_tolerance = 0.005;
+
+  bool IsValid(std::string* error) const;
+};
+
+// Rates at which a detected family's lines are predicted.
+struct FamilyRates {
+  double fundamental_hz = 0.0;  // measured f0 (FamilyDetection::fundamental_hz)
+  double sideband_hz = 0.0;     // measured sideband spacing, else kinematic x speed scale
+  bool sideband_measured = false;
+};
+
+// The family's measured fundamental, and its sideband spacing: for the rolling element f_c from
+// the +/- f_c pairs (mean half-distance of the significant pairs; sideband_measured = false when
+// no harmonic has both; then single significant sidebands against k f_b), for the inner race the
+// shaft speed `shaft_hz`, for the outer race `cage_hz` (kinematic) x the comb's speed scale.
+FamilyRates MeasureRates(const FamilyDetection& detection,
+                         const FaultFamily& family,
+                         double cage_hz,
+                         double shaft_hz);
+
+// Every line a fault of this family puts in the SES below max_hz, at the given rates:
+//   outer race      k BPFO, k BPFO +/- m f_c
+//   inner race      k BPFI, k BPFI +/- m f_r
+//   rolling element k f_b and (k - 1/2) f_b (1 x BSF series), each +/- m f_c; m f_c (modulation)
+//   cage            k f_c for every k (a cage fault is an impulse train at f_c)
+// Harmonics k = 1..harmonics (cage: all up to max_hz); m = 1..sideband_orders.
+std::vector<double> PredictedLines(FaultComponent component,
+                                   const FamilyRates& rates,
+                                   int harmonics,
+                                   int sideband_orders,
+                                   double max_hz);
+
+// The significant SES peaks (pair p-value <= options.line_p_value) at predicted lines, each with
+// its claim window. Harmonic series are followed upward with the rate re-estimated from the peaks
+// found so far, so a slightly wrong rate does not walk off the lines at high orders.
+std::vector<ExplainedLine> ClaimLines(const NormalizedSpectrum& spectrum,
+                                      const std::vector<double>& predicted_hz,
+                                      FaultComponent by,
+                                      const DetectionOptions& options,
+                                      const ExplanationOptions& explanation = {});
+
+struct JointExplanation {
+  // Detected families in explanation order, then the others by p-value.
+  std::vector<FamilyDetection> ranked;
+  std::vector<ExplainedLine> explained;  // every claimed line, in claiming order
+  // f_b / f_sb - nearest integer, relative; NaN when not tested (no measured sideband spacing).
+  double roller_integer_ratio_mismatch = 0.0;
+  bool roller_is_cage_comb = false;
+};
+
+// `detections` are the four families tested independently on `spectrum` with `context`, in the
+// order of `families`. Re-tests use the same context (multiplicity, shaft and mains exclusions)
+// plus the claimed lines.
+JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
+                                const std::vector<FaultFamily>& families,
+                                std::vector<FamilyDetection> detections,
+                                const DetectionContext& context,
+                                const DetectionOptions& options,
+                                const ExplanationOptions& explanation = {});
+
+}  // namespace spallkit::dsp
