@@ -8,8 +8,21 @@
 
 #include "core/error.h"
 
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || defined(__AVX2__)
 #include <immintrin.h>
+#endif
+
+// glibc's vector math library (libmvec, linked through libm's linker script) has log1p and exp
+// for AVX2 from glibc 2.35.
+#if defined(__AVX2__) && defined(__GLIBC__) && defined(__GLIBC_PREREQ)
+#if __GLIBC_PREREQ(2, 35)
+#define SPALLKIT_LIBMVEC 1
+extern "C" __m256d _ZGVdN4v_log1p(__m256d);
+extern "C" __m256d _ZGVdN4v_exp(__m256d);
+#endif
+#endif
+#ifndef SPALLKIT_LIBMVEC
+#define SPALLKIT_LIBMVEC 0
 #endif
 
 namespace spallkit::dsp {
@@ -256,104 +269,82 @@ double DistanceToHarmonic(double f, double base) {
   return std::abs(f - m * base);
 }
 
+// -ln p of the larger of bins (i, i + 1) (NormalizedSpectrum::PairPValue), capped. With
+// L = -ln q = n log1p(z / n) (BinTail) and p = q (2 - q): -ln p = L - log1p(1 - q), which avoids a
+// log of p near 1 (glibc's slow path there made it the costliest call of the comb search); the
+// cap is at most -ln 1e-300, as p was floored there.
+double PairScoreOf(double z0, double z1, double n_eff, double cap) {
+  const double zmax = std::max(z0, z1);
+  if (!(zmax > 0.0)) return 0.0;
+  const double minus_log_q = n_eff * std::log1p(zmax / n_eff);
+  const double q = std::exp(-minus_log_q);
+  return std::min(minus_log_q - std::log1p(1.0 - q), cap);
+}
+
 }  // namespace
 
-FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
-                             const FaultFamily& family,
-                             const DetectionContext& context,
-                             const DetectionOptions& options) {
+std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
+                               const DetectionOptions& options) {
+  const int nbins = static_cast<int>(spectrum.z.size());
+  const int count = std::max(0, nbins - 1);
+  std::vector<double> out(count);
+  const double n_eff = spectrum.effective_samples;
+  const double cap = std::min(options.max_line_score, -std::log(1e-300));
+  const double* z = spectrum.z.data();
+  int i = 0;
+#if SPALLKIT_LIBMVEC
+  // Four bins at a time through glibc's vector log1p/exp (libmvec, <= 4 ulp from the scalar
+  // functions): the three transcendentals per bin were half of a band's comb search.
+  const __m256d vn = _mm256_set1_pd(n_eff), vcap = _mm256_set1_pd(cap);
+  const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+  for (; i + 4 <= count; i += 4) {
+    const __m256d zmax = _mm256_max_pd(_mm256_loadu_pd(z + i), _mm256_loadu_pd(z + i + 1));
+    const __m256d minus_log_q = _mm256_mul_pd(vn, _ZGVdN4v_log1p(_mm256_div_pd(zmax, vn)));
+    const __m256d q = _ZGVdN4v_exp(_mm256_sub_pd(zero, minus_log_q));
+    const __m256d s =
+        _mm256_min_pd(_mm256_sub_pd(minus_log_q, _ZGVdN4v_log1p(_mm256_sub_pd(one, q))), vcap);
+    const __m256d positive = _mm256_cmp_pd(zmax, zero, _CMP_GT_OQ);
+    _mm256_storeu_pd(out.data() + i, _mm256_and_pd(positive, s));
+  }
+#endif
+  for (; i < count; ++i) out[i] = PairScoreOf(z[i], z[i + 1], n_eff, cap);
+  return out;
+}
+
+CombSearch::CombSearch(const FaultFamily& family,
+                       const DetectionContext& context,
+                       const DetectionOptions& options,
+                       double resolution_hz,
+                       int bins)
+    : family_(family), context_(context), options_(options), df_(resolution_hz), nbins_(bins) {
   std::string error;
   if (!options.IsValid(&error)) throw InputError("detection: " + error);
   if (!(context.shaft_hz > 0.0)) throw InputError("detection: shaft speed must be > 0 Hz");
-  const double df = spectrum.resolution_hz;
-  const int nbins = static_cast<int>(spectrum.z.size());
+  if (!(resolution_hz > 0.0)) throw InputError("detection: resolution must be > 0 Hz");
+  const double df = df_;
+  const int nbins = nbins_;
   const double tol = options.tolerance;
   const double c = context.center_scale > 0.0 ? context.center_scale : 1.0;
+  center_ = c;
   const double s_lo = c * (1.0 - tol), s_hi = c * (1.0 + tol);
-
-  FamilyDetection det;
-  det.component = family.component;
   const int nl = static_cast<int>(family.lines.size());
-
-  // Exclusions do not depend on s beyond a bin or two: decide them at each s for the shaft (the
-  // shaft lines move with the speed), once for mains (fixed in Hz).
   const double shaft_base = context.shaft_hz / std::max(1, options.shaft_order_divisor);
-  auto excluded_at = [&](double f, double s, std::string* why) {
-    const double guard = std::max(options.guard_bins * df, options.guard_fraction * f);
-    if (context.exclude_shaft &&
-        (DistanceToHarmonic(f, shaft_base * s) <= guard ||
-         (context.measured_shaft_scale <= 0.0 && DistanceToHarmonic(f, shaft_base) <= guard) ||
-         (context.measured_shaft_scale > 0.0 &&
-          DistanceToHarmonic(f, shaft_base * context.measured_shaft_scale) <= guard))) {
-      if (why) *why = "shaft";
-      return true;
-    }
-    for (double mains : options.mains_hz) {
-      if (context.exclude_mains && DistanceToHarmonic(f, mains) <= guard) {
-        if (why) *why = "mains";
-        return true;
-      }
-    }
-    for (double base : context.exclude_harmonics_of_hz) {
-      if (DistanceToHarmonic(f, base) <= guard) {
-        if (why) *why = "cage";
-        return true;
-      }
-    }
-    for (const ExplainedLine& e : context.explained) {
-      if (std::abs(f - e.freq_hz) <= e.half_width_hz) {
-        if (why) *why = ComponentName(e.by);
-        return true;
-      }
-    }
-    if (f / df + 1.0 >= nbins - 1 || f <= 0.0) {
-      if (why) *why = "range";
-      return true;
-    }
-    return false;
-  };
 
   const double f_top = family.MaxLineHz() * s_hi;
   const double ds = f_top > 0.0 ? 0.5 * df / f_top : 1.0;
   const int grid = std::max(1, static_cast<int>(std::ceil((s_hi - s_lo) / ds)) + 1);
 
-  // -ln p of the larger of bins (i, i+1), capped: computed on first use (three transcendentals a
-  // bin), so only the bins some line's search window visits are paid for. The table spans the
-  // family's bins only.
-  double f_low = std::numeric_limits<double>::infinity();
-  for (const auto& l : family.lines) f_low = std::min(f_low, l.nominal_hz);
-  const int i_lo = std::clamp(static_cast<int>(std::floor(f_low * s_lo / df)) - 2, 0, nbins - 1);
-  const int i_hi = std::clamp(static_cast<int>(std::ceil(f_top / df)) + 2, i_lo, nbins - 1);
-  std::vector<double> pair_score(i_hi - i_lo + 1, -1.0);  // < 0: not computed yet
-  // -ln p for p = q (2 - q) (PairPValue), q = (1 + z/n)^-n (BinTail): with L = -ln q,
-  // -ln p = L - log1p(1 - q), which avoids a log of p near 1 (glibc's slow path there made it
-  // the costliest call of the comb search); capped at -ln 1e-300 as p was floored there.
-  const double n_eff = spectrum.effective_samples;
-  const double score_cap = std::min(options.max_line_score, -std::log(1e-300));
-  auto pair_score_of = [&](int i) {
-    const double zmax = std::max(spectrum.z[i], spectrum.z[i + 1]);
-    if (!(zmax > 0.0)) return 0.0;
-    const double minus_log_q = n_eff * std::log1p(zmax / n_eff);
-    const double q = std::exp(-minus_log_q);
-    return std::min(minus_log_q - std::log1p(1.0 - q), score_cap);
-  };
-  auto score_at = [&](int i) {
-    if (i < i_lo || i > i_hi) return pair_score_of(i);
-    double& score = pair_score[i - i_lo];
-    if (score < 0.0) score = pair_score_of(i);
-    return score;
-  };
-
   // The walk over s is done line by line over the whole grid, so each step is a short loop the
-  // compiler vectorises: f, the guard, the bin, the exclusion tests (as in excluded_at(), with
+  // compiler vectorises: f, the guard, the bin, the exclusion tests (as in Excluded(), with
   // each base's reciprocal formed once: multiplying by it can move f/base by an ulp, which
   // changes the rounded harmonic number only at a half-way point, where both neighbours are
-  // base/2 away, far outside any guard, so the decisions are the same). The comb score of grid
-  // point g sums its lines in line order, as a point-by-point walk would.
-  std::vector<double> s_grid(grid), comb_hz(grid), comb_inv(grid);
+  // base/2 away, far outside any guard, so the decisions are the same). None of it depends on
+  // the spectrum's values, so it is planned once and kept (bins_) for every band searched.
+  s_grid_.resize(grid);
+  std::vector<double> comb_hz(grid), comb_inv(grid);
   for (int g = 0; g < grid; ++g) {
-    s_grid[g] = grid == 1 ? c : s_lo + (s_hi - s_lo) * g / double(grid - 1);
-    comb_hz[g] = shaft_base * s_grid[g];
+    s_grid_[g] = grid == 1 ? c : s_lo + (s_hi - s_lo) * g / double(grid - 1);
+    comb_hz[g] = shaft_base * s_grid_[g];
     comb_inv[g] = 1.0 / comb_hz[g];
   }
   std::vector<double> fixed_bases;  // harmonics that do not move with s
@@ -367,14 +358,15 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
   const double guard_hz = options.guard_bins * df;
   const double guard_fraction = options.guard_fraction;
   const double top_bin = nbins - 1;
-  std::vector<double> f(grid), guard(grid), q(grid), score(grid, 0.0);
+  std::vector<double> f(grid), guard(grid), q(grid);
   std::vector<unsigned char> excluded(grid), changed(grid, 0);
-  std::vector<int> bin(grid), used(grid, 0);
+  used_.assign(grid, 0);
+  bins_.assign(static_cast<size_t>(nl) * grid, -1);
   changed[0] = 1;
   for (int l = 0; l < nl; ++l) {
     const double fl = family.lines[l].nominal_hz;
     for (int g = 0; g < grid; ++g) {
-      f[g] = fl * s_grid[g];
+      f[g] = fl * s_grid_[g];
       guard[g] = std::max(guard_hz, guard_fraction * f[g]);
       q[g] = f[g] / df;
       excluded[g] = (q[g] + 1.0 >= top_bin) | (f[g] <= 0.0);  // "range"
@@ -399,22 +391,98 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
         continue;
       for (int g = 0; g < grid; ++g) excluded[g] |= std::abs(f[g] - e.freq_hz) <= e.half_width_hz;
     }
+    int* bin = bins_.data() + static_cast<size_t>(l) * grid;
     for (int g = 0; g < grid; ++g) bin[g] = excluded[g] ? -1 : static_cast<int>(std::floor(q[g]));
-    for (int g = 0; g < grid; ++g) {
-      if (bin[g] < 0) continue;
-      score[g] += score_at(bin[g]);
-      ++used[g];
-    }
+    for (int g = 0; g < grid; ++g) used_[g] += bin[g] >= 0;
     for (int g = 1; g < grid; ++g) changed[g] |= bin[g] != bin[g - 1];
   }
+  combinations_ = 0;
+  for (int g = 0; g < grid; ++g) combinations_ += changed[g];
+}
+
+bool CombSearch::Excluded(double f, double s, std::string* why) const {
+  const DetectionContext& context = context_;
+  const DetectionOptions& options = options_;
+  const double df = df_;
+  const double shaft_base = context.shaft_hz / std::max(1, options.shaft_order_divisor);
+  const double guard = std::max(options.guard_bins * df, options.guard_fraction * f);
+  if (context.exclude_shaft &&
+      (DistanceToHarmonic(f, shaft_base * s) <= guard ||
+       (context.measured_shaft_scale <= 0.0 && DistanceToHarmonic(f, shaft_base) <= guard) ||
+       (context.measured_shaft_scale > 0.0 &&
+        DistanceToHarmonic(f, shaft_base * context.measured_shaft_scale) <= guard))) {
+    if (why) *why = "shaft";
+    return true;
+  }
+  for (double mains : options.mains_hz) {
+    if (context.exclude_mains && DistanceToHarmonic(f, mains) <= guard) {
+      if (why) *why = "mains";
+      return true;
+    }
+  }
+  for (double base : context.exclude_harmonics_of_hz) {
+    if (DistanceToHarmonic(f, base) <= guard) {
+      if (why) *why = "cage";
+      return true;
+    }
+  }
+  for (const ExplainedLine& e : context.explained) {
+    if (std::abs(f - e.freq_hz) <= e.half_width_hz) {
+      if (why) *why = ComponentName(e.by);
+      return true;
+    }
+  }
+  if (f / df + 1.0 >= nbins_ - 1 || f <= 0.0) {
+    if (why) *why = "range";
+    return true;
+  }
+  return false;
+}
+
+FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
+                             const FaultFamily& family,
+                             const DetectionContext& context,
+                             const DetectionOptions& options) {
+  const CombSearch search(
+      family, context, options, spectrum.resolution_hz, static_cast<int>(spectrum.z.size()));
+  return search.Detect(spectrum, PairScores(spectrum, options));
+}
+
+FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
+                                   std::span<const double> pair_scores) const {
+  SPALLKIT_CHECK(static_cast<int>(spectrum.z.size()) == nbins_ &&
+                     std::abs(spectrum.resolution_hz - df_) <= 1e-12 * df_ &&
+                     static_cast<int>(pair_scores.size()) >= nbins_ - 1,
+                 "comb search planned for " << nbins_ << " bins of " << df_ << " Hz, given "
+                                            << spectrum.z.size() << " of "
+                                            << spectrum.resolution_hz);
+  const FaultFamily& family = family_;
+  const DetectionOptions& options = options_;
+  const DetectionContext& context = context_;
+  const double df = df_;
+  const double c = center_;
+  const int nl = static_cast<int>(family.lines.size());
+  const int grid = static_cast<int>(s_grid_.size());
+  FamilyDetection det;
+  det.component = family.component;
+
+  // The comb score of grid point g sums its lines in line order.
+  std::vector<double> score(grid, 0.0);
+  const double* ps = pair_scores.data();
+  for (int l = 0; l < nl; ++l) {
+    const int* bin = bins_.data() + static_cast<size_t>(l) * grid;
+    for (int g = 0; g < grid; ++g)
+      if (bin[g] >= 0) score[g] += ps[bin[g]];
+  }
+  const std::vector<int>& used = used_;
+  const std::vector<double>& s_grid = s_grid_;
+  const int combos = combinations_;
 
   double best_score = -1.0, best_s = c;
   int best_used = 0;
   double best_tail = 0.0;
   bool best_tail_valid = false;
-  int combos = 0;
   for (int g = 0; g < grid; ++g) {
-    combos += changed[g];
     // Compare combs with different M by their Gamma tail, not the raw sum.
     // Q(M, S) grows with M and falls with S, which settles most comparisons without a tail.
     bool improves;
@@ -464,7 +532,7 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
     ev.line = family.lines[l];
     const double f = ev.line.nominal_hz * best_s;
     ev.freq_hz = f;
-    if (excluded_at(f, best_s, &ev.exclusion)) {
+    if (Excluded(f, best_s, &ev.exclusion)) {
       ev.excluded = true;
       if (ev.exclusion != "range") {
         const int i0 = static_cast<int>(std::floor(f / df));

@@ -155,6 +155,45 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
                              const DetectionContext& context,
                              const DetectionOptions& options = {});
 
+// Capped -ln PairPValue(max(z[i], z[i+1])) for i = 0 .. bins - 2: the per-line evidence the comb
+// scores sum. One vectorised pass per spectrum, shared by every family searched on it.
+std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
+                               const DetectionOptions& options = {});
+
+// DetectFamily in two parts, for searching the same family in many spectra of the same
+// resolution and size (the diagnosis's candidate bands): the comb plan (speed grid, the bins
+// each line visits, the shaft/mains/explained exclusions, the combination count C) depends only
+// on the family, the context and the spectrum's size, not on its values, so it is made once;
+// Detect() then sums the pair scores along it. DetectFamily(s, f, c, o) ==
+// CombSearch(f, c, o, s.resolution_hz, s.z.size()).Detect(s, PairScores(s, o)).
+class CombSearch {
+ public:
+  // Throws InputError for invalid options, a shaft speed <= 0 or a resolution <= 0.
+  CombSearch(const FaultFamily& family,
+             const DetectionContext& context,
+             const DetectionOptions& options,
+             double resolution_hz,
+             int bins);
+  // spectrum must have the planned size and resolution; pair_scores = PairScores(spectrum).
+  FamilyDetection Detect(const NormalizedSpectrum& spectrum,
+                         std::span<const double> pair_scores) const;
+  int bins() const { return nbins_; }
+
+ private:
+  bool Excluded(double f, double s, std::string* why) const;
+
+  FaultFamily family_;
+  DetectionContext context_;
+  DetectionOptions options_;
+  double df_ = 0.0;
+  int nbins_ = 0;
+  double center_ = 1.0;
+  std::vector<double> s_grid_;
+  std::vector<int> bins_;  // line-major, bins_[l * grid + g]: lower bin of the pair, -1 excluded
+  std::vector<int> used_;  // lines used (not excluded) at each grid point
+  int combinations_ = 0;   // distinct bin combinations along the grid
+};
+
 // log of the regularised upper incomplete gamma Q(m, x) for integer m >= 1 (sum of m Exp(1)).
 double LogGammaUpperTail(int m, double x);
 // Smallest x with mult * Q(m, x) <= alpha.

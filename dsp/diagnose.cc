@@ -285,6 +285,18 @@ Diagnosis Diagnose(const Record& record,
   }
 
   const int floor_half = options.floor_window_bins / 2 + 2;
+  // Comb plans (dsp/detection.h, CombSearch): the speed grid, the bins each line visits and the
+  // exclusions depend on the spectrum's size only, which is the same for (nearly) every band, so
+  // they are made once per size instead of once per band and family.
+  std::vector<std::pair<int, std::vector<CombSearch>>> comb_plans;
+  auto plans_for = [&](int bins) -> const std::vector<CombSearch>& {
+    for (const auto& p : comb_plans)
+      if (p.first == bins) return p.second;
+    std::vector<CombSearch> plans;
+    for (const auto& family : d.families) plans.emplace_back(family, ctx, dopt, df, bins);
+    comb_plans.emplace_back(bins, std::move(plans));
+    return comb_plans.back().second;
+  };
   std::optional<BandResult> best;
   std::optional<BandResult> kurt_choice;
   bool kurt_choice_is_best = false;
@@ -308,8 +320,9 @@ Diagnosis Diagnose(const Record& record,
       r.normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
       // Each family on its own here; which family explains which line is decided jointly on the
       // chosen band (dsp/explain.h).
-      for (const auto& family : d.families)
-        r.detections.push_back(DetectFamily(r.normalized, family, ctx, dopt));
+      const std::vector<double> pair_scores = PairScores(r.normalized, dopt);
+      for (const CombSearch& plan : plans_for(static_cast<int>(r.normalized.z.size())))
+        r.detections.push_back(plan.Detect(r.normalized, pair_scores));
       for (const auto& det : r.detections) r.best_p = std::min(r.best_p, det.p_value);
       const bool is_kurtogram_best =
           std::abs(node.center_hz - d.kurtogram.best.center_hz) < 1e-9 &&
