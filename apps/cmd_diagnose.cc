@@ -26,6 +26,7 @@ struct Opts {
   double tolerance_percent = 2.0;
   int harmonics = 5;
   double false_alarm = 1e-3;
+  int first_bands = 16;
 };
 
 int Run(const Opts& o) {
@@ -46,6 +47,8 @@ int Run(const Opts& o) {
   opt.tolerance = o.tolerance_percent / 100.0;
   opt.prewhiten = o.prewhiten;
   opt.false_alarm_probability = o.false_alarm;
+  opt.first_bands = o.first_bands;
+  opt.kurtogram_map = !o.plot_dir.empty();  // the deeper map only for the plot
   std::string error;
   if (!opt.IsValid(&error)) throw InputError(error);
 
@@ -79,6 +82,11 @@ spallkit::apps::Register reg(
       sub.add_option("--harmonics", o->harmonics, "harmonics per fault family")
           ->capture_default_str();
       sub.add_option("--false-alarm", o->false_alarm, "false-alarm probability per record")
+          ->capture_default_str();
+      sub.add_option("--first-bands",
+                     o->first_bands,
+                     "candidate bands searched first (most impulsive); the others only when "
+                     "these show no fault (0: all at once; the false-alarm design is the same)")
           ->capture_default_str();
       return [o] { return Run(*o); };
     });

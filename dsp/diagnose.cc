@@ -227,17 +227,29 @@ Diagnosis Diagnose(const Record& record,
   EnvelopeAnalyzer analyzer(x, fs);
   const double df = analyzer.resolution_hz();
 
-  // Kurtogram: deep enough that the narrowest useful node (bandwidth >= alpha_need) exists,
-  // two levels deeper for the map, bounded by the automatic depth.
+  // Kurtogram, only as deep as the candidate bands need: the narrowest candidate (width >=
+  // alpha_need) lies on binary level needed_level or on the ternary row below it, and the
+  // ternary rows reach needed_level + 0.6 with L = needed_level + 1; deeper rows hold no
+  // candidate and would cost ~15 % more. The map (options.kurtogram_map, for the plot) is a
+  // second kurtogram two levels deeper; the analysis does not depend on it.
   KurtogramOptions kopt;
   const int auto_level = std::min(9, static_cast<int>(std::floor(std::log2(d.samples))) - 7);
   const int needed_level =
       std::max(1, static_cast<int>(std::floor(std::log2(fs / alpha_need))) - 1);
   kopt.max_level = options.kurtogram_max_level > 0
                        ? options.kurtogram_max_level
-                       : std::max(1, std::min(auto_level, needed_level + 2));
+                       : std::max(1, std::min(auto_level, needed_level + 1));
   kopt.min_center_hz = alpha_need;
-  d.kurtogram = FastKurtogram(analyzer, kopt);
+  Kurtogram analysis_kurtogram = FastKurtogram(analyzer, kopt);
+  const KurtogramNode analysis_best = analysis_kurtogram.best;
+  const std::vector<KurtogramNode> nodes = analysis_kurtogram.Nodes();
+  const int map_level = std::max(1, std::min(auto_level, needed_level + 2));
+  if (options.kurtogram_map && options.kurtogram_max_level == 0 && map_level > kopt.max_level) {
+    kopt.max_level = map_level;
+    d.kurtogram = FastKurtogram(analyzer, kopt);
+  } else {
+    d.kurtogram = std::move(analysis_kurtogram);
+  }
   d.kurtogram_best = d.kurtogram.best;
 
   // Shaft speed from the raw spectrum (the record as given, lines intact).
@@ -254,7 +266,7 @@ Diagnosis Diagnose(const Record& record,
 
   // Candidate bands.
   std::vector<KurtogramNode> candidates;
-  for (const auto& node : d.kurtogram.Nodes()) {
+  for (const auto& node : nodes) {
     const Band b = node.band();
     // Nodes much wider than the lines need only dilute a resonance with noise and cost the
     // most to demodulate: keep widths in [alpha_need, 8 alpha_need].
@@ -325,8 +337,8 @@ Diagnosis Diagnose(const Record& record,
         r.detections.push_back(plan.Detect(r.normalized, pair_scores));
       for (const auto& det : r.detections) r.best_p = std::min(r.best_p, det.p_value);
       const bool is_kurtogram_best =
-          std::abs(node.center_hz - d.kurtogram.best.center_hz) < 1e-9 &&
-          std::abs(node.bandwidth_hz - d.kurtogram.best.bandwidth_hz) < 1e-9;
+          std::abs(node.center_hz - analysis_best.center_hz) < 1e-9 &&
+          std::abs(node.bandwidth_hz - analysis_best.bandwidth_hz) < 1e-9;
       const bool becomes_best = !best || BandKey(r) > BandKey(*best);
       const bool becomes_kurt_choice =
           !kurt_choice || (!kurt_choice_is_best &&
