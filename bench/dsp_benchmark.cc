@@ -68,6 +68,7 @@ BENCHMARK(BM_Kurtogram)
     ->Args({0, 1})
     ->Args({0, 2})
     ->Args({6, 1})
+    ->Args({5, 1})
     ->MeasureProcessCPUTime()
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
