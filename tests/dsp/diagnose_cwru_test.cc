@@ -11,14 +11,12 @@
 #include "core/bearing.h"
 #include "dsp/diagnose.h"
 #include "dsp/record.h"
+#include "tests/measured_data.h"
 
 namespace spallkit::dsp {
 namespace {
 
-std::string MeasuredDir() {
-  if (const char* env = std::getenv("SPALLKIT_MEASURED_DIR")) return env;
-  return std::string(SPALLKIT_SOURCE_DIR) + "/../shared/data/measured";
-}
+std::string MeasuredDir() { return spallkit::testing::MeasuredDataDir(); }
 
 struct CwruRecord {
   const char* file;

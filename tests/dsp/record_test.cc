@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "core/hdf5.h"
+#include "tests/measured_data.h"
 
 namespace spallkit::dsp {
 namespace {
@@ -425,7 +426,7 @@ TEST_F(RecordTest, WriteCsvRecordRoundTripsBitExactly) {
 // ---- real data (skipped when absent) ----------------------------------------------------------
 
 TEST(RecordMeasured, CwruRecordsReadWithTheirManifestRates) {
-  const fs::path dir = "/work/shared/data/measured";
+  const fs::path dir = spallkit::testing::MeasuredDataDir();
   struct Expected {
     const char* file;
     double fs;
