@@ -15,13 +15,15 @@ std::vector<CommandSpec>& Commands() {
 
 int main(int argc, char** argv) {
   using namespace spallkit::apps;
-  CLI::App app{"spall: rolling-bearing spall simulation and diagnosis (spallkit " SPALLKIT_VERSION ")"};
+  CLI::App app{"spall: rolling-bearing spall simulation and diagnosis (spallkit " SPALLKIT_VERSION
+               ")"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("spallkit ") + SPALLKIT_VERSION);
 
   auto& commands = Commands();
-  std::sort(commands.begin(), commands.end(),
-            [](const CommandSpec& a, const CommandSpec& b) { return a.name < b.name; });
+  std::sort(commands.begin(), commands.end(), [](const CommandSpec& a, const CommandSpec& b) {
+    return a.name < b.name;
+  });
   std::map<CLI::App*, Runner> runners;
   for (const auto& spec : commands) {
     CLI::App* sub = app.add_subcommand(spec.name, spec.description);

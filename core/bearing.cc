@@ -12,7 +12,8 @@ namespace {
 
 constexpr double kMm = 1e-3;
 
-BearingGeometry Make(const char* name, int z, double d_mm, double dm_mm, double di_mm, double do_mm) {
+BearingGeometry Make(
+    const char* name, int z, double d_mm, double dm_mm, double di_mm, double do_mm) {
   BearingGeometry g;
   g.name = name;
   g.num_elements = z;
@@ -77,14 +78,15 @@ BearingGeometry CustomBearing(int num_elements,
 BearingFrequencies ComputeFrequencies(const BearingGeometry& bearing, double shaft_hz) {
   bearing.Validate();
   if (!(shaft_hz > 0) || !std::isfinite(shaft_hz))
-    throw InputError("shaft speed must be a positive number (got " + std::to_string(shaft_hz) + " Hz)");
+    throw InputError("shaft speed must be a positive number (got " + std::to_string(shaft_hz) +
+                     " Hz)");
   const double gamma =
       bearing.element_diameter_m * std::cos(bearing.contact_angle_rad) / bearing.pitch_diameter_m;
   BearingFrequencies f;
   f.shaft_hz = shaft_hz;
   f.cage_hz = 0.5 * shaft_hz * (1.0 - gamma);
-  f.roller_spin_hz =
-      bearing.pitch_diameter_m / (2.0 * bearing.element_diameter_m) * shaft_hz * (1.0 - gamma * gamma);
+  f.roller_spin_hz = bearing.pitch_diameter_m / (2.0 * bearing.element_diameter_m) * shaft_hz *
+                     (1.0 - gamma * gamma);
   f.f_b_hz = 2.0 * f.roller_spin_hz;
   f.bpfo_hz = bearing.num_elements * f.cage_hz;
   f.bpfi_hz = bearing.num_elements * (shaft_hz - f.cage_hz);

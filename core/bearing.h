@@ -13,11 +13,11 @@
 namespace spallkit {
 
 struct BearingGeometry {
-  std::string name;                  // catalogue name or "custom"
-  int num_elements = 0;              // Z, rollers or balls
-  double element_diameter_m = 0.0;   // roller or ball diameter
-  double pitch_diameter_m = 0.0;     // d_m
-  double contact_angle_rad = 0.0;    // 0 for cylindrical roller and radial ball bearings
+  std::string name;                 // catalogue name or "custom"
+  int num_elements = 0;             // Z, rollers or balls
+  double element_diameter_m = 0.0;  // roller or ball diameter
+  double pitch_diameter_m = 0.0;    // d_m
+  double contact_angle_rad = 0.0;   // 0 for cylindrical roller and radial ball bearings
   // Raceway diameters: known for catalogue cylindrical roller bearings, else derived as
   // d_m -/+ element diameter.
   double inner_raceway_diameter_m = 0.0;

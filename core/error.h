@@ -25,17 +25,20 @@ class NumericalError : public std::runtime_error {
 };
 
 namespace internal {
-[[noreturn]] void CheckFailed(const char* condition, const char* file, int line, const std::string& msg);
+[[noreturn]] void CheckFailed(const char* condition,
+                              const char* file,
+                              int line,
+                              const std::string& msg);
 }  // namespace internal
 
 }  // namespace spallkit
 
 // Always-on invariant check for programmer errors (like MFEM_VERIFY). Aborts with file:line.
-#define SPALLKIT_CHECK(cond, msg)                                                   \
-  do {                                                                             \
-    if (!(cond)) {                                                                 \
-      std::ostringstream spallkit_check_os_;                                       \
-      spallkit_check_os_ << msg;                                                   \
+#define SPALLKIT_CHECK(cond, msg)                                                             \
+  do {                                                                                        \
+    if (!(cond)) {                                                                            \
+      std::ostringstream spallkit_check_os_;                                                  \
+      spallkit_check_os_ << msg;                                                              \
       ::spallkit::internal::CheckFailed(#cond, __FILE__, __LINE__, spallkit_check_os_.str()); \
-    }                                                                              \
+    }                                                                                         \
   } while (0)

@@ -45,7 +45,8 @@ std::string SesPlot(const Diagnosis& d, const std::string& dir) {
                 d.verdict.c_str());
   p.title = title;
   p.x_label = "cyclic frequency alpha (Hz)";
-  p.y_label = "SES level |FFT(SE)|/N" + (d.units.empty() ? std::string() : " (" + Squared(d.units) + ")");
+  p.y_label =
+      "SES level |FFT(SE)|/N" + (d.units.empty() ? std::string() : " (" + Squared(d.units) + ")");
   double x_max = 0.0;
   for (const auto& f : d.families)
     if (f.component != FaultComponent::kCage) x_max = std::max(x_max, f.MaxLineHz());
@@ -112,7 +113,8 @@ std::string SpectrogramPlot(const Diagnosis& d,
   h.title = title;
   h.x_label = "time (s)";
   h.y_label = "frequency (Hz)";
-  h.colorbar_label = "PSD (dB re " + Squared(d.units.empty() ? std::string("unit") : d.units) + "/Hz)";
+  h.colorbar_label =
+      "PSD (dB re " + Squared(d.units.empty() ? std::string("unit") : d.units) + "/Hz)";
   h.rows = sg.bins;
   h.cols = sg.frames;
   h.values.resize(static_cast<size_t>(h.rows) * h.cols);

@@ -23,10 +23,10 @@ struct BoundaryCurve {
 };
 
 struct Mesh {
-  std::vector<double> x, y;                   // node coordinates, m
-  std::vector<std::array<int, 4>> quads;      // counter-clockwise node ids
-  std::vector<int> element_part;              // part index per element
-  std::vector<std::string> part_names;        // part index -> name
+  std::vector<double> x, y;               // node coordinates, m
+  std::vector<std::array<int, 4>> quads;  // counter-clockwise node ids
+  std::vector<int> element_part;          // part index per element
+  std::vector<std::string> part_names;    // part index -> name
   std::map<std::string, std::vector<int>> node_sets;
   std::map<std::string, BoundaryCurve> curves;
 

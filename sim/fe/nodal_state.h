@@ -11,11 +11,11 @@
 namespace spallkit::fe {
 
 struct NodalState {
-  std::vector<double> x0, y0;    // reference (initial) coordinates, m
-  std::vector<double> x, y;      // current coordinates x^n, m
-  std::vector<double> vx, vy;    // velocities v^(n-1/2), m/s
-  std::vector<double> fx, fy;    // force accumulators at step n, N (zeroed by the solver each step)
-  std::vector<double> mass;      // lumped nodal mass, kg
+  std::vector<double> x0, y0;  // reference (initial) coordinates, m
+  std::vector<double> x, y;    // current coordinates x^n, m
+  std::vector<double> vx, vy;  // velocities v^(n-1/2), m/s
+  std::vector<double> fx, fy;  // force accumulators at step n, N (zeroed by the solver each step)
+  std::vector<double> mass;    // lumped nodal mass, kg
 
   std::size_t size() const { return x.size(); }
   void Resize(std::size_t n) {

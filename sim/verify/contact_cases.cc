@@ -17,7 +17,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kE = 210e9, kNu = 0.3, kRho = 7850.0, kThickness = 0.01;
 
-
 void Add(std::vector<CaseResult>* results,
          const std::string& name,
          const std::string& quantity,

@@ -12,14 +12,15 @@
 namespace spallkit::verify {
 
 struct CaseResult {
-  std::string name;       // contains one of: patch, rotation, wave, cantilever, hertz, friction, energy
-  std::string quantity;   // what is compared, with units, e.g. "wave speed (m/s)"
+  std::string name;  // contains one of: patch, rotation, wave, cantilever, hertz, friction, energy
+  std::string quantity;  // what is compared, with units, e.g. "wave speed (m/s)"
   double reference = 0.0;
   double computed = 0.0;
-  double error = 0.0;      // relative error |computed - reference| / |reference| (or absolute, see note)
+  double error =
+      0.0;  // relative error |computed - reference| / |reference| (or absolute, see note)
   double tolerance = 0.0;
   bool pass = false;
-  std::string note;        // e.g. "absolute error", mesh size
+  std::string note;  // e.g. "absolute error", mesh size
 };
 
 // Appends the element / solver cases (patch, rotation, wave, cantilever, ...).

@@ -45,7 +45,8 @@ int CountColor(const cv::Mat& img, Rgb c, int tol = 40) {
   for (int r = 0; r < img.rows; ++r) {
     for (int col = 0; col < img.cols; ++col) {
       const cv::Vec3b p = img.at<cv::Vec3b>(r, col);
-      if (std::abs(p[2] - c.r) <= tol && std::abs(p[1] - c.g) <= tol && std::abs(p[0] - c.b) <= tol) {
+      if (std::abs(p[2] - c.r) <= tol && std::abs(p[1] - c.g) <= tol &&
+          std::abs(p[0] - c.b) <= tol) {
         ++n;
       }
     }
