@@ -313,7 +313,9 @@ fe::Mesh MakeAdapter(const SceneGeometry& g,
   const std::vector<double> t = AdapterLayers(
       g.adapter_height_m,
       first_layer_scale * scene.mesh.contact_size_m,
-      std::max(scene.mesh.adapter_size_m, first_layer_scale * scene.mesh.contact_size_m));
+      first_layer_scale > 1.0
+          ? std::max(scene.mesh.adapter_size_m, first_layer_scale * scene.mesh.contact_size_m)
+          : scene.mesh.adapter_size_m);  // the full-FE mesh as before
   const int ny = static_cast<int>(t.size()) - 1;
   PartBuilder b("adapter");
   std::vector<std::vector<int>> ids(2 * kk + 1, std::vector<int>(ny + 1));
