@@ -27,6 +27,7 @@ struct Opts {
   int harmonics = 5;
   double false_alarm = 1e-3;
   int first_bands = 16;
+  int threads = 0;
 };
 
 int Run(const Opts& o) {
@@ -48,6 +49,7 @@ int Run(const Opts& o) {
   opt.prewhiten = o.prewhiten;
   opt.false_alarm_probability = o.false_alarm;
   opt.first_bands = o.first_bands;
+  opt.threads = o.threads;
   opt.kurtogram_map = !o.plot_dir.empty();  // the deeper map only for the plot
   std::string error;
   if (!opt.IsValid(&error)) throw InputError(error);
@@ -87,6 +89,11 @@ spallkit::apps::Register reg(
                      o->first_bands,
                      "candidate bands searched first (most impulsive); the others only when "
                      "these show no fault (0: all at once; the false-alarm design is the same)")
+          ->capture_default_str();
+      sub.add_option("--threads",
+                     o->threads,
+                     "threads for the band search and the kurtogram (0: automatic, up to 4; the "
+                     "result is the same for any count)")
           ->capture_default_str();
       return [o] { return Run(*o); };
     });

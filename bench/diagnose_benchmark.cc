@@ -41,11 +41,14 @@ const Record& TheRecord() {
 
 constexpr double kShaftHz = 1797 / 60.0;
 
-// Arg: first_bands (16, the default staged search; 0, every candidate band in one go).
+// Args: first_bands (16, the default staged search; 0, every candidate band in one go), threads
+// (DiagnoseOptions::threads: 1, single thread; 2, the band search and the kurtogram's chains on
+// two threads; the results are identical).
 void RunDiagnose(benchmark::State& state, const Record& record) {
   const auto bearing = spallkit::CatalogBearing("6205");
   DiagnoseOptions options;
   options.first_bands = static_cast<int>(state.range(0));
+  options.threads = static_cast<int>(state.range(1));
   std::string verdict;
   int bands = 0, searched = 0;
   for (auto _ : state) {
@@ -62,9 +65,13 @@ void RunDiagnose(benchmark::State& state, const Record& record) {
 // Outer-race fault (the benchmark record).
 void BM_Diagnose10s48k(benchmark::State& state) { RunDiagnose(state, TheRecord()); }
 BENCHMARK(BM_Diagnose10s48k)
-    ->ArgName("first_bands")
-    ->Arg(16)
-    ->Arg(0)
+    ->ArgNames({"first_bands", "threads"})
+    ->Args({16, 1})
+    ->Args({0, 1})
+    ->Args({16, 2})
+    ->Args({0, 2})
+    ->UseRealTime()
+    ->MeasureProcessCPUTime()
     ->Unit(benchmark::kMillisecond);
 
 // Healthy record (noise, shaft, mains and a weak BPFO-order line): nothing stops the search, so
@@ -73,7 +80,13 @@ void BM_DiagnoseHealthy10s48k(benchmark::State& state) {
   static const Record healthy = MakeRecord(false);
   RunDiagnose(state, healthy);
 }
-BENCHMARK(BM_DiagnoseHealthy10s48k)->ArgName("first_bands")->Arg(16)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DiagnoseHealthy10s48k)
+    ->ArgNames({"first_bands", "threads"})
+    ->Args({16, 1})
+    ->Args({16, 2})
+    ->UseRealTime()
+    ->MeasureProcessCPUTime()
+    ->Unit(benchmark::kMillisecond);
 
 // One candidate band as Diagnose sees it: 9-12 kHz (3 kHz wide), SES up to the highest fault line
 // plus half a floor window (~920 Hz, ~9,200 bins).

@@ -1,9 +1,13 @@
 #include "dsp/diagnose.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <deque>
+#include <exception>
 #include <limits>
 #include <nlohmann/json.hpp>
 
@@ -26,6 +30,7 @@ bool DiagnoseOptions::IsValid(std::string* error) const {
     return fail("false-alarm probability must be in (0, 1)");
   if (kurtogram_max_level < 0) return fail("kurtogram level must be >= 0");
   if (first_bands < 0) return fail("first bands must be >= 0 (0 = all candidates at once)");
+  if (threads < 0) return fail("threads must be >= 0 (0 = automatic)");
   if (floor_window_bins < 21) return fail("floor window must be >= 21 bins");
   if (!(line_p_value > 0.0 && line_p_value < 1.0)) return fail("line p-value must be in (0, 1)");
   if (!(min_modulation >= 0.0 && min_modulation < 10.0))
@@ -240,6 +245,9 @@ Diagnosis Diagnose(const Record& record,
                        ? options.kurtogram_max_level
                        : std::max(1, std::min(auto_level, needed_level + 1));
   kopt.min_center_hz = alpha_need;
+  const int threads =
+      options.threads > 0 ? options.threads : std::max(1, std::min(omp_get_num_procs(), 4));
+  kopt.threads = std::min(threads, 2);  // the kurtogram has two chains
   Kurtogram analysis_kurtogram = FastKurtogram(analyzer, kopt);
   const KurtogramNode analysis_best = analysis_kurtogram.best;
   const std::vector<KurtogramNode> nodes = analysis_kurtogram.Nodes();
@@ -299,16 +307,44 @@ Diagnosis Diagnose(const Record& record,
   const int floor_half = options.floor_window_bins / 2 + 2;
   // Comb plans (dsp/detection.h, CombSearch): the speed grid, the bins each line visits and the
   // exclusions depend on the spectrum's size only, which is the same for (nearly) every band, so
-  // they are made once per size instead of once per band and family.
-  std::vector<std::pair<int, std::vector<CombSearch>>> comb_plans;
-  auto plans_for = [&](int bins) -> const std::vector<CombSearch>& {
-    for (const auto& p : comb_plans)
-      if (p.first == bins) return p.second;
-    std::vector<CombSearch> plans;
-    for (const auto& family : d.families) plans.emplace_back(family, ctx, dopt, df, bins);
-    comb_plans.emplace_back(bins, std::move(plans));
-    return comb_plans.back().second;
+  // they are made once per size instead of once per band and family. A deque keeps references
+  // valid while another thread adds a size; lookups and additions are serialised.
+  std::deque<std::pair<int, std::vector<CombSearch>>> comb_plans;
+  auto plans_for = [&](int bins) -> const std::vector<CombSearch>* {
+    const std::vector<CombSearch>* found = nullptr;
+#pragma omp critical(spallkit_diagnose_comb_plans)
+    {
+      for (const auto& p : comb_plans)
+        if (p.first == bins) found = &p.second;
+      if (!found) {
+        std::vector<CombSearch> plans;
+        for (const auto& family : d.families) plans.emplace_back(family, ctx, dopt, df, bins);
+        comb_plans.emplace_back(bins, std::move(plans));
+        found = &comb_plans.back().second;
+      }
+    }
+    return found;
   };
+  // One band's SES, floor and four family searches; reads only shared state, writes *r.
+  auto evaluate =
+      [&](const KurtogramNode& node, EnvelopeAnalyzer::SesWorkspace* workspace, BandResult* r) {
+        r->node = node;
+        const Band band = node.band();
+        const double max_alpha = std::min(band.width_hz(), alpha_need + floor_half * df);
+        // SES power (level^2) in single precision: the transforms are most of a band's cost, and
+        // the floor, z and p-values need ~6 digits, not 15 (dsp/envelope.h).
+        const std::vector<double> power =
+            analyzer.SesPowerFast(band, max_alpha, &r->envelope_size, workspace);
+        r->normalized = NormalizeSpectrum(power, df, dopt);
+        r->normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
+        // Each family on its own here; which family explains which line is decided jointly on the
+        // chosen band (dsp/explain.h).
+        const std::vector<double> pair_scores = PairScores(r->normalized, dopt);
+        for (const CombSearch& plan : *plans_for(static_cast<int>(r->normalized.z.size())))
+          r->detections.push_back(plan.Detect(r->normalized, pair_scores));
+        for (const auto& det : r->detections) r->best_p = std::min(r->best_p, det.p_value);
+      };
+  std::vector<EnvelopeAnalyzer::SesWorkspace> workspaces(threads);
   std::optional<BandResult> best;
   std::optional<BandResult> kurt_choice;
   bool kurt_choice_is_best = false;
@@ -316,42 +352,53 @@ Diagnosis Diagnose(const Record& record,
   // family. Detection is not aligned with kurtosis (the family rule wants >= 2 harmonics each
   // modulating >= min_modulation of the band's mean SE, which a resonance's flank can satisfy
   // and its centre not), so a healthy-looking stage 1 never ends the search.
+  // With several threads a stage's bands are evaluated in parallel (dynamic schedule: a thread
+  // the machine delays just takes fewer bands) and then compared one after the other in the
+  // stage's order: the same comparisons as one thread makes. One thread holds one result at a
+  // time, as before.
   bool detected_any = false;
+  std::vector<BandResult> results;
   for (const auto& stage : SearchStages(candidates, options.first_bands)) {
     if (detected_any) break;
-    for (const auto& node : stage) {
-      ++d.searched_bands;
-      BandResult r;
-      r.node = node;
-      const Band band = node.band();
-      const double max_alpha = std::min(band.width_hz(), alpha_need + floor_half * df);
-      // SES power (level^2) in single precision: the transforms are most of a band's cost, and
-      // the floor, z and p-values need ~6 digits, not 15 (dsp/envelope.h).
-      const std::vector<double> power = analyzer.SesPowerFast(band, max_alpha, &r.envelope_size);
-      r.normalized = NormalizeSpectrum(power, df, dopt);
-      r.normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
-      // Each family on its own here; which family explains which line is decided jointly on the
-      // chosen band (dsp/explain.h).
-      const std::vector<double> pair_scores = PairScores(r.normalized, dopt);
-      for (const CombSearch& plan : plans_for(static_cast<int>(r.normalized.z.size())))
-        r.detections.push_back(plan.Detect(r.normalized, pair_scores));
-      for (const auto& det : r.detections) r.best_p = std::min(r.best_p, det.p_value);
-      const bool is_kurtogram_best =
-          std::abs(node.center_hz - analysis_best.center_hz) < 1e-9 &&
-          std::abs(node.bandwidth_hz - analysis_best.bandwidth_hz) < 1e-9;
-      const bool becomes_best = !best || BandKey(r) > BandKey(*best);
-      const bool becomes_kurt_choice =
-          !kurt_choice || (!kurt_choice_is_best &&
-                           (is_kurtogram_best || node.kurtosis > kurt_choice->node.kurtosis));
-      if (becomes_kurt_choice) {
-        kurt_choice_is_best = is_kurtogram_best;
-        if (becomes_best)
-          kurt_choice = r;  // a copy: both keep it
-        else
-          kurt_choice = std::move(r);
+    const int count = static_cast<int>(stage.size());
+    const int batch = threads > 1 ? std::max(1, count) : 1;
+    results.resize(batch);
+    for (int start = 0; start < count; start += batch) {
+      const int stop = std::min(count, start + batch);
+      std::vector<std::exception_ptr> errors(threads);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1)
+      for (int i = start; i < stop; ++i) {
+        const int t = omp_get_thread_num();
+        try {
+          results[i - start] = BandResult();
+          evaluate(stage[i], &workspaces[t], &results[i - start]);
+        } catch (...) {
+          if (!errors[t]) errors[t] = std::current_exception();
+        }
       }
-      for (const auto& det : r.detections) detected_any |= det.detected;
-      if (becomes_best) best = std::move(r);
+      for (const auto& e : errors)
+        if (e) std::rethrow_exception(e);
+      for (int i = start; i < stop; ++i) {
+        BandResult& r = results[i - start];
+        const KurtogramNode& node = r.node;
+        ++d.searched_bands;
+        const bool is_kurtogram_best =
+            std::abs(node.center_hz - analysis_best.center_hz) < 1e-9 &&
+            std::abs(node.bandwidth_hz - analysis_best.bandwidth_hz) < 1e-9;
+        const bool becomes_best = !best || BandKey(r) > BandKey(*best);
+        const bool becomes_kurt_choice =
+            !kurt_choice || (!kurt_choice_is_best &&
+                             (is_kurtogram_best || node.kurtosis > kurt_choice->node.kurtosis));
+        if (becomes_kurt_choice) {
+          kurt_choice_is_best = is_kurtogram_best;
+          if (becomes_best)
+            kurt_choice = r;  // a copy: both keep it
+          else
+            kurt_choice = std::move(r);
+        }
+        for (const auto& det : r.detections) detected_any |= det.detected;
+        if (becomes_best) best = std::move(r);
+      }
     }
   }
 

@@ -53,6 +53,11 @@ struct DiagnoseOptions {
   // every candidate either way, so the false-alarm design does not change; a faulty record
   // usually stops after the first stage (each band costs an SES, a floor and four combs).
   int first_bands = 16;
+  // Threads (OpenMP) for the candidate bands and the kurtogram's two chains; 0: automatic,
+  // min(number of processors, 4). Each band is computed by one thread with its own buffers and
+  // the bands are compared in the same fixed order as with one thread, so the Diagnosis is
+  // bit-identical for every thread count; only the wall time changes.
+  int threads = 0;
 
   bool IsValid(std::string* error) const;
 };

@@ -36,6 +36,12 @@ struct EnvelopeAnalyzer::PlansF {
   std::vector<std::complex<double>> twiddle;  // e^{-2 pi i k / m}, k <= the alpha bins used
 };
 
+EnvelopeAnalyzer::SesWorkspace::SesWorkspace() = default;
+EnvelopeAnalyzer::SesWorkspace::~SesWorkspace() = default;
+EnvelopeAnalyzer::SesWorkspace::SesWorkspace(SesWorkspace&&) noexcept = default;
+EnvelopeAnalyzer::SesWorkspace& EnvelopeAnalyzer::SesWorkspace::operator=(SesWorkspace&&) noexcept =
+    default;
+
 namespace {
 
 // sum v_j^2 and sum v_j with independent vector accumulators (GCC/Clang vector extension): a
@@ -232,6 +238,13 @@ EnvelopeSpectrum EnvelopeAnalyzer::Compute(const Band& band, const EnvelopeOptio
 std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
                                                    double max_alpha_hz,
                                                    int* envelope_size) {
+  return SesPowerFast(band, max_alpha_hz, envelope_size, &ses_workspace_);
+}
+
+std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
+                                                   double max_alpha_hz,
+                                                   int* envelope_size,
+                                                   SesWorkspace* workspace) const {
   if (!(max_alpha_hz > 0)) {
     std::ostringstream os;
     os << "envelope SES power: max_alpha_hz must be > 0, got " << max_alpha_hz;
@@ -240,7 +253,7 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
   const BandBins b = Resolve(band, max_alpha_hz);
   const int m = b.m;  // a multiple of 64 (FftFastSize), and > 2 alpha_bins
   if (envelope_size) *envelope_size = m;
-  auto& slot = plans_f_[m];
+  auto& slot = workspace->plans_[m];
   if (!slot) slot = std::make_unique<PlansF>(m);
   PlansF& p = *slot;
 

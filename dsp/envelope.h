@@ -49,9 +49,28 @@ struct EnvelopeOptions {
 
 // Analyses one record: the forward FFT is done once in the constructor, then any number of bands
 // cost only the small transforms of their decimated envelopes. Plans for each decimated size are
-// cached in the object and reused across calls. Not thread-safe (one analyser per thread).
+// cached in the object and reused across calls. Not thread-safe (one analyser per thread), except
+// the const SesPowerFast overload, which takes the thread's own SesWorkspace.
 class EnvelopeAnalyzer {
+ private:
+  struct PlansF;
+
  public:
+  // Buffers and cached plans of SesPowerFast (one set per decimated size). Several threads may
+  // call SesPowerFast(..., workspace) on one analyser at once, each with its own workspace:
+  // the record's spectrum is only read, and FFTW plans are made under a mutex (dsp/fft.h).
+  class SesWorkspace {
+   public:
+    SesWorkspace();
+    ~SesWorkspace();
+    SesWorkspace(SesWorkspace&&) noexcept;
+    SesWorkspace& operator=(SesWorkspace&&) noexcept;
+
+   private:
+    friend class EnvelopeAnalyzer;
+    std::map<int, std::unique_ptr<PlansF>> plans_;
+  };
+
   // Minimum record length accepted.
   static constexpr int kMinSamples = 64;
 
@@ -90,6 +109,11 @@ class EnvelopeAnalyzer {
   // diagnosis searches many bands this way). *envelope_size (may be null) receives the decimated
   // envelope's length m.
   std::vector<double> SesPowerFast(const Band& band, double max_alpha_hz, int* envelope_size);
+  // Same, with the caller's workspace (bit-identical results): thread-safe as described above.
+  std::vector<double> SesPowerFast(const Band& band,
+                                   double max_alpha_hz,
+                                   int* envelope_size,
+                                   SesWorkspace* workspace) const;
 
   // The complex envelope c (analytic signal of the band-passed record, shifted down by the band's
   // first bin frequency) at the decimated rate, written to *out (resized); returns the rate.
@@ -99,7 +123,6 @@ class EnvelopeAnalyzer {
 
  private:
   struct Plans;
-  struct PlansF;
   struct BandBins {
     int k1, k2, alpha_bins, m;
   };
@@ -111,7 +134,7 @@ class EnvelopeAnalyzer {
   double fs_hz_ = 0;
   std::vector<std::complex<double>> spectrum_;
   std::map<int, std::unique_ptr<Plans>> plans_;
-  std::map<int, std::unique_ptr<PlansF>> plans_f_;
+  SesWorkspace ses_workspace_;  // SesPowerFast's, for the non-const overload
 };
 
 // One-shot convenience: EnvelopeAnalyzer(x, fs).Compute(band, options).
