@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -114,14 +115,12 @@ std::vector<std::vector<KurtogramNode>> SearchStages(const std::vector<Kurtogram
 
 // Mean of the squared envelope |c|^2 of a band, in the SES level's units: with the
 // EnvelopeAnalyzer scaling (a sine of amplitude A gives SE = A^2) it is twice the band's
-// variance, 4/N^2 sum |X_k|^2 over the band's one-sided bins (Parseval).
-double SquaredEnvelopeMean(const EnvelopeAnalyzer& analyzer, const Band& band) {
+// variance, 4/N^2 sum |X_k|^2 over the band's one-sided bins [k1, k2) (Parseval).
+double SquaredEnvelopeMean(const EnvelopeAnalyzer& analyzer, int k1, int k2) {
   const auto& spec = analyzer.spectrum();
-  const double df = analyzer.resolution_hz();
   const int n = analyzer.size();
-  const int k1 = std::max(1, static_cast<int>(std::ceil(band.low_hz / df)));
-  const int k2 =
-      std::min(static_cast<int>(spec.size()) - 1, static_cast<int>(std::floor(band.high_hz / df)));
+  k1 = std::max(1, k1);
+  k2 = std::min(static_cast<int>(spec.size()), k2) - 1;  // inclusive from here
   // sum |X_k|^2 with independent vector accumulators (a plain loop is one serial chain of
   // additions the compiler may not reassociate).
   typedef double D4 __attribute__((vector_size(32)));
@@ -245,10 +244,26 @@ Diagnosis Diagnose(const Record& record,
                        ? options.kurtogram_max_level
                        : std::max(1, std::min(auto_level, needed_level + 1));
   kopt.min_center_hz = alpha_need;
+  // The candidate rows' squared envelopes are kept: each candidate's SES is the spectrum of its
+  // node's |c|^2 (one forward transform), with no second demodulation of the band.
+  kopt.keep_envelopes_min_hz = alpha_need;
+  kopt.keep_envelopes_max_hz = kMaxWidthFactor * alpha_need;
   const int threads =
       options.threads > 0 ? options.threads : std::max(1, std::min(omp_get_num_procs(), 4));
   kopt.threads = std::min(threads, 2);  // the kurtogram has two chains
   Kurtogram analysis_kurtogram = FastKurtogram(analyzer, kopt);
+  // Kept apart (the map below, if any, replaces d.kurtogram; the report needs no envelopes).
+  const std::vector<std::vector<float>> node_se = std::move(analysis_kurtogram.squared_envelopes);
+  analysis_kurtogram.squared_envelopes.assign(node_se.size(), {});
+  const Kurtogram& tree = analysis_kurtogram;  // levels, bins, sizes (valid until moved below)
+  auto row_of = [levels = tree.levels](double level) {
+    for (size_t r = 0; r < levels.size(); ++r)
+      if (std::abs(levels[r] - level) < 1e-9) return static_cast<int>(r);
+    return -1;
+  };
+  const std::vector<int> envelope_sizes = tree.envelope_sizes;
+  const double envelope_gain2 = tree.envelope_gain2;
+  const int tree_samples = tree.samples;
   const KurtogramNode analysis_best = analysis_kurtogram.best;
   const std::vector<KurtogramNode> nodes = analysis_kurtogram.Nodes();
   const int map_level = std::max(1, std::min(auto_level, needed_level + 2));
@@ -326,17 +341,39 @@ Diagnosis Diagnose(const Record& record,
     return found;
   };
   // One band's SES, floor and four family searches; reads only shared state, writes *r.
+  // A candidate is exactly its kurtogram node: the node's half-open bin range [lo, hi) (the
+  // Hz band [low, high] would also take bin `high` when it falls on a bin), so its SES comes
+  // from the node's own squared envelope and its mean from the same bins.
+  auto node_bins = [&](const KurtogramNode& node, int* lo, int* hi) {
+    const int nodes = static_cast<int>(std::lround(0.5 * fs / node.bandwidth_hz));
+    *lo = static_cast<int>((int64_t(node.index) * tree_samples + 2 * nodes - 1) / (2 * nodes));
+    *hi = node.index + 1 == nodes
+              ? tree_samples / 2 + 1
+              : static_cast<int>((int64_t(node.index + 1) * tree_samples + 2 * nodes - 1) /
+                                 (2 * nodes));
+  };
+  // One band's SES, floor and four family searches; reads only shared state, writes *r.
   auto evaluate =
       [&](const KurtogramNode& node, EnvelopeAnalyzer::SesWorkspace* workspace, BandResult* r) {
         r->node = node;
         const Band band = node.band();
         const double max_alpha = std::min(band.width_hz(), alpha_need + floor_half * df);
-        // SES power (level^2) in single precision: the transforms are most of a band's cost, and
+        const int row = row_of(node.level);
+        SPALLKIT_CHECK(row >= 0 && !node_se[row].empty(),
+                       "diagnose: no kept envelope for kurtogram level " << node.level);
+        const int m = envelope_sizes[row];
+        r->envelope_size = m;
+        // SES power (level^2) in single precision: the transform is most of a band's cost, and
         // the floor, z and p-values need ~6 digits, not 15 (dsp/envelope.h).
-        const std::vector<double> power =
-            analyzer.SesPowerFast(band, max_alpha, &r->envelope_size, workspace);
+        const std::vector<double> power = analyzer.SesPowerFromSquaredEnvelope(
+            std::span<const float>(node_se[row].data() + static_cast<size_t>(node.index) * m, m),
+            envelope_gain2,
+            max_alpha,
+            workspace);
         r->normalized = NormalizeSpectrum(power, df, dopt);
-        r->normalized.envelope_mean = SquaredEnvelopeMean(analyzer, band);
+        int lo = 0, hi = 0;
+        node_bins(node, &lo, &hi);
+        r->normalized.envelope_mean = SquaredEnvelopeMean(analyzer, lo, hi);
         // Each family on its own here; which family explains which line is decided jointly on the
         // chosen band (dsp/explain.h).
         const std::vector<double> pair_scores = PairScores(r->normalized, dopt);

@@ -277,10 +277,22 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
   std::fill(in + nb, in + m, std::complex<float>(0.0f));
   p.inverse.Execute(in, p.envelope.get());
 
-  // SE = |c|^2 (mean in double), mean removed, packed as z_t = se_2t + i se_2t+1.
+  // SE = |c|^2, packed as z_t = se_2t + i se_2t+1.
   const float* c = reinterpret_cast<const float*>(p.envelope.get());
   float* z = reinterpret_cast<float*>(p.packed.get());
   for (int t = 0; t < m; ++t) z[t] = c[2 * t] * c[2 * t] + c[2 * t + 1] * c[2 * t + 1];
+  const double gain2 = rms * 2.0 / n_ * (rms * 2.0 / n_);
+  PackedSesPower(&p, m, b.alpha_bins, gain2, power.data());
+  return power;
+}
+
+// The second half of the SES: z (p->packed) holds m samples of SE (any scale; gain2 makes it the
+// true one) packed as z_t = se_2t + i se_2t+1; removes the mean (in double), transforms, and
+// writes P(k) = |FFT(SE - mean)_k|^2 / m^2 for k = 1..alpha_bins to power[k], power[0] = 0.
+void EnvelopeAnalyzer::PackedSesPower(
+    PlansF* pp, int m, int alpha_bins, double gain2, double* power) {
+  PlansF& p = *pp;
+  float* z = reinterpret_cast<float*>(p.packed.get());
   const float mean = static_cast<float>(Sum(z, m) / m);
   for (int t = 0; t < m; ++t) z[t] -= mean;
   p.half.Execute(p.packed.get(), p.packed_spectrum.get());
@@ -288,27 +300,28 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
   // X_k = E_k + w^k O_k with E_k = (Z_k + conj Z_{-k}) / 2, O_k = -i (Z_k - conj Z_{-k}) / 2
   // (indices mod m/2), w = e^{-2 pi i / m}: the real transform's bins, only up to alpha.
   const int h = m / 2;
-  if (static_cast<int>(p.twiddle.size()) < b.alpha_bins + 1) {
-    p.twiddle.resize(b.alpha_bins + 1);
+  if (static_cast<int>(p.twiddle.size()) < alpha_bins + 1) {
+    p.twiddle.resize(alpha_bins + 1);
     // Products of a coarse and a fine table (error ~1e-15), not one sincos per bin.
     const int fine = 64;
     std::complex<double> fine_w[fine];
     for (int i = 0; i < fine; ++i) fine_w[i] = std::polar(1.0, -2.0 * std::numbers::pi * i / m);
-    for (int k = 0; k <= b.alpha_bins; k += fine) {
+    for (int k = 0; k <= alpha_bins; k += fine) {
       const std::complex<double> coarse = std::polar(1.0, -2.0 * std::numbers::pi * k / m);
-      for (int i = 0; i < fine && k + i <= b.alpha_bins; ++i) p.twiddle[k + i] = coarse * fine_w[i];
+      for (int i = 0; i < fine && k + i <= alpha_bins; ++i) p.twiddle[k + i] = coarse * fine_w[i];
     }
   }
   const std::complex<float>* zs = p.packed_spectrum.get();
-  const double gain2 = rms * 2.0 / n_ * (rms * 2.0 / n_);
   const double scale = gain2 * gain2 / (double(m) * double(m));
-  // 1 <= k <= alpha_bins < h, so Z_k and Z_{h-k} are in range; the complex arithmetic is
-  // written out (std::complex's operator* checks for NaN and does not vectorise).
+  // 1 <= k <= alpha_bins <= h; Z's indices are taken mod h (k = h, the real transform's Nyquist
+  // bin, only arises from SesPowerFromSquaredEnvelope). The complex arithmetic is written out
+  // (std::complex's operator* checks for NaN and does not vectorise).
   const float* zf = reinterpret_cast<const float*>(zs);
   const double* tw = reinterpret_cast<const double*>(p.twiddle.data());
-  for (int k = 1; k <= b.alpha_bins; ++k) {
-    const double zr = zf[2 * k], zi = zf[2 * k + 1];
-    const double cr = zf[2 * (h - k)], ci = -zf[2 * (h - k) + 1];  // conj Z_{h-k}
+  for (int k = 1; k <= alpha_bins; ++k) {
+    const int kk = k == h ? 0 : k, hk = h - kk == h ? 0 : h - kk;
+    const double zr = zf[2 * kk], zi = zf[2 * kk + 1];
+    const double cr = zf[2 * hk], ci = -zf[2 * hk + 1];  // conj Z_{h-k}
     const double er = 0.5 * (zr + cr), ei = 0.5 * (zi + ci);
     const double o_r = 0.5 * (zi - ci), o_i = -0.5 * (zr - cr);  // -i (Z_k - conj Z_{h-k}) / 2
     const double wr = tw[2 * k], wi = tw[2 * k + 1];
@@ -316,6 +329,31 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
     power[k] = (xr * xr + xi * xi) * scale;
   }
   power[0] = 0.0;  // mean removed
+}
+
+std::vector<double> EnvelopeAnalyzer::SesPowerFromSquaredEnvelope(std::span<const float> se,
+                                                                  double gain2,
+                                                                  double max_alpha_hz,
+                                                                  SesWorkspace* workspace) const {
+  const int m = static_cast<int>(se.size());
+  const double df = fs_hz_ / n_;
+  const int alpha_bins =
+      max_alpha_hz > 0
+          ? static_cast<int>(std::floor(std::min(max_alpha_hz, 0.5 * fs_hz_) / df + 1e-9))
+          : 0;
+  if (!(max_alpha_hz > 0) || m % 2 != 0 || m < 2 * alpha_bins || m < 2) {
+    std::ostringstream os;
+    os << "envelope SES power from a squared envelope of " << m << " samples up to " << max_alpha_hz
+       << " Hz: expected max_alpha > 0 and an even length of at least 2 x " << alpha_bins
+       << " alpha bins";
+    throw InputError(os.str());
+  }
+  auto& slot = workspace->plans_[m];
+  if (!slot) slot = std::make_unique<PlansF>(m);
+  PlansF& p = *slot;
+  std::memcpy(reinterpret_cast<float*>(p.packed.get()), se.data(), sizeof(float) * m);
+  std::vector<double> power(alpha_bins + 1, 0.0);
+  PackedSesPower(&p, m, alpha_bins, gain2, power.data());
   return power;
 }
 

@@ -115,6 +115,19 @@ class EnvelopeAnalyzer {
                                    int* envelope_size,
                                    SesWorkspace* workspace) const;
 
+  // SES power, as SesPowerFast returns it, from a squared envelope already at hand: se holds m
+  // samples of |c|^2 over the whole record (m even, sample s at time s * N / (m fs), e.g. a
+  // kurtogram node's, Kurtogram::squared_envelopes) in any scale, gain2 the factor that makes it
+  // the true squared envelope (EnvelopeAnalyzer's convention). The band's bins are whatever c
+  // holds; the result is alias-free up to max_alpha_hz when m exceeds the band's bins plus the
+  // alpha bins (m >= 2 B does it for alpha up to the band width). Costs one half-size complex
+  // transform (no inverse transform of the band). Throws InputError if max_alpha_hz <= 0, m is
+  // odd or m < 2 alpha bins. Thread-safe with the caller's workspace.
+  std::vector<double> SesPowerFromSquaredEnvelope(std::span<const float> se,
+                                                  double gain2,
+                                                  double max_alpha_hz,
+                                                  SesWorkspace* workspace) const;
+
   // The complex envelope c (analytic signal of the band-passed record, shifted down by the band's
   // first bin frequency) at the decimated rate, written to *out (resized); returns the rate.
   double ComplexEnvelope(const Band& band,
@@ -129,6 +142,8 @@ class EnvelopeAnalyzer {
   BandBins Resolve(const Band& band, double max_alpha_hz) const;
   Plans& PlansFor(int m);
   void FillEnvelope(const BandBins& bins);  // writes c into work_ of plans for bins.m
+  // The SES from SE packed in plans->packed (SesPowerFast, SesPowerFromSquaredEnvelope).
+  static void PackedSesPower(PlansF* plans, int m, int alpha_bins, double gain2, double* power);
 
   int n_ = 0;
   double fs_hz_ = 0;

@@ -92,7 +92,16 @@ struct ChainRow {
   int row;    // index in the kurtogram's rows
   int nodes;  // nodes in the row
   int m;      // envelope samples per node; m of a parent = 2 m of its children
+  bool keep;  // store the row's squared envelopes
 };
+
+// |c_j|^2 of a whole row (nodes * m samples) into out, in single precision.
+void StoreSquaredEnvelopes(const std::complex<float>* env, size_t count, std::vector<float>* out) {
+  out->resize(count);
+  const float* c = reinterpret_cast<const float*>(env);
+  float* o = out->data();
+  for (size_t j = 0; j < count; ++j) o[j] = c[2 * j] * c[2 * j] + c[2 * j + 1] * c[2 * j + 1];
+}
 
 // Per-thread buffers, kept between calls and grown on demand: a 10 s record at 48 kHz needs
 // ~20 MB of them, and fresh allocations of that size cost page faults on every call (10 % of the
@@ -222,7 +231,8 @@ void ProcessChain(const std::complex<float>* xf,
                   int n,
                   double empty_energy,
                   const std::vector<ChainRow>& chain,
-                  std::vector<std::vector<double>>* result) {
+                  std::vector<std::vector<double>>* result,
+                  std::vector<std::vector<float>>* squared_envelopes) {
   const int bins = n / 2 + 1;
   auto bounds = [&](int i, int nodes, int* lo, int* hi) {
     *lo = FirstBin(i, nodes, n);
@@ -257,6 +267,7 @@ void ProcessChain(const std::complex<float>* xf,
       fft.Execute(in, env);
       row[i] = EnvelopeKurtosis(env, m, b.power.get());
     }
+    if (deepest.keep) StoreSquaredEnvelopes(child, row_size, &(*squared_envelopes)[deepest.row]);
   }
   if (chain.size() == 1) return;
 
@@ -327,6 +338,9 @@ void ProcessChain(const std::complex<float>* xf,
       const double sum4 = (acc4[0] + acc4[1]) + (acc4[2] + acc4[3]);
       row[i] = sum2 > 0 ? std::max(0.0, mp * sum4 / (sum2 * sum2) - 2.0) : 0.0;
     }
+    if (up.keep)
+      StoreSquaredEnvelopes(
+          parent, static_cast<size_t>(up.nodes) * mp, &(*squared_envelopes)[up.row]);
     std::swap(child, parent);
     std::swap(energy, parent_energy);
   }
@@ -344,6 +358,12 @@ double Kurtogram::BandwidthHz(int row) const {
   const bool ternary = level - whole > 1e-6;
   const double nodes = ternary ? 3.0 * std::ldexp(1.0, whole - 1) : std::ldexp(1.0, whole);
   return 0.5 * sample_rate_hz / nodes;
+}
+
+void Kurtogram::NodeBins(int row, int index, int* lo, int* hi) const {
+  const int nodes = static_cast<int>(kurtosis.at(row).size());
+  *lo = FirstBin(index, nodes, samples);
+  *hi = (index + 1 == nodes) ? samples / 2 + 1 : FirstBin(index + 1, nodes, samples);
 }
 
 std::vector<KurtogramNode> Kurtogram::Nodes() const {
@@ -436,7 +456,10 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   std::vector<std::vector<ChainRow>> chains(2);
   for (int r = static_cast<int>(rows.size()) - 1; r >= 0; --r) {
     const bool ternary = rows[r].level != std::floor(rows[r].level);
-    chains[ternary ? 1 : 0].push_back({r, rows[r].nodes, 0});
+    const double width = 0.5 * fs / rows[r].nodes;
+    const bool keep = width >= options.keep_envelopes_min_hz * (1 - 1e-12) &&
+                      width <= options.keep_envelopes_max_hz * (1 + 1e-12);
+    chains[ternary ? 1 : 0].push_back({r, rows[r].nodes, 0, keep});
   }
   if (chains[1].empty()) chains.pop_back();
   for (auto& chain : chains) {
@@ -457,13 +480,22 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   // The chains are independent: one thread each at most. The arithmetic is the same whatever
   // the thread count, so the results are identical.
   std::vector<std::vector<double>> result(rows.size());
+  out.squared_envelopes.assign(rows.size(), {});
+  out.envelope_sizes.assign(rows.size(), 0);
+  for (const auto& chain : chains)
+    for (const auto& row : chain) out.envelope_sizes[row.row] = row.m;
+  // xf = X * w * scale with the analytic weights w, and c_true = (2 / n) IFFT(X w): |c_true|^2 =
+  // (2 / (n scale))^2 |c|^2.
+  const double gain = 2.0 / (static_cast<double>(n) * scale);
+  out.envelope_gain2 = gain * gain;
+  out.samples = n;
   const int chain_count = static_cast<int>(chains.size());
 #ifdef _OPENMP
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
 #pragma omp parallel for num_threads(std::min(threads, chain_count)) schedule(static, 1)
 #endif
   for (int c = 0; c < chain_count; ++c) {
-    ProcessChain(xf.data(), n, empty_energy, chains[c], &result);
+    ProcessChain(xf.data(), n, empty_energy, chains[c], &result, &out.squared_envelopes);
   }
   for (const Row& row : rows) out.levels.push_back(row.level);
   out.kurtosis = std::move(result);

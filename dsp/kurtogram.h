@@ -52,6 +52,14 @@ struct KurtogramOptions {
   // 0 = OpenMP's default. The result does not depend on it. Default 1: callers that run several
   // analyses at once (tests, sweeps) should not oversubscribe.
   int threads = 1;
+  // Keep the squared envelopes |c|^2 of every node in rows whose node width lies in
+  // [keep_envelopes_min_hz, keep_envelopes_max_hz] (Kurtogram::squared_envelopes), so that a
+  // caller (the diagnosis) can take those nodes' squared envelope spectra from them with one
+  // forward transform each, instead of demodulating the band a second time. Default: none kept.
+  // The samples are exact (ideal band-pass, 2x oversampled, see above), so the SES of a node up
+  // to its width in cyclic frequency is alias-free.
+  double keep_envelopes_min_hz = 0;
+  double keep_envelopes_max_hz = -1;
 };
 
 struct KurtogramNode {
@@ -67,6 +75,20 @@ struct Kurtogram {
   KurtogramNode best;                         // highest kurtosis among eligible nodes
   double sample_rate_hz = 0;
   int max_level = 0;  // L actually used
+  int samples = 0;    // N, the record's length
+
+  // Rows kept by KurtogramOptions::keep_envelopes_*: squared_envelopes[row] holds each node's
+  // |c|^2 (node after node, envelope_sizes[row] samples each, in single precision and in the
+  // kurtogram's internal scale); empty for the other rows. The true squared envelope (a sine of
+  // amplitude A in the node gives A^2, EnvelopeAnalyzer's convention) is envelope_gain2 times it.
+  // Sample s of a node lies at time s * N / (m fs); the node's bins sit at k mod m, which only
+  // rotates the phase of c, so |c|^2 is the band's squared envelope itself.
+  std::vector<std::vector<float>> squared_envelopes;
+  std::vector<int> envelope_sizes;
+  double envelope_gain2 = 0;
+
+  // FFT bins [*lo, *hi) of node `index` of row `row` (the last node of a row also holds Nyquist).
+  void NodeBins(int row, int index, int* lo, int* hi) const;
 
   // Width of the nodes of row r, and all nodes (row by row), for other band selectors.
   double BandwidthHz(int row) const;
