@@ -248,12 +248,14 @@ Diagnosis Diagnose(const Record& record,
   // node's |c|^2 (one forward transform), with no second demodulation of the band.
   kopt.keep_envelopes_min_hz = alpha_need;
   kopt.keep_envelopes_max_hz = kMaxWidthFactor * alpha_need;
+  thread_local std::vector<std::vector<float>> envelope_buffers;  // reused by the next call
+  kopt.envelope_buffers = &envelope_buffers;
   const int threads =
       options.threads > 0 ? options.threads : std::max(1, std::min(omp_get_num_procs(), 4));
   kopt.threads = std::min(threads, 2);  // the kurtogram has two chains
   Kurtogram analysis_kurtogram = FastKurtogram(analyzer, kopt);
   // Kept apart (the map below, if any, replaces d.kurtogram; the report needs no envelopes).
-  const std::vector<std::vector<float>> node_se = std::move(analysis_kurtogram.squared_envelopes);
+  std::vector<std::vector<float>> node_se = std::move(analysis_kurtogram.squared_envelopes);
   analysis_kurtogram.squared_envelopes.assign(node_se.size(), {});
   const Kurtogram& tree = analysis_kurtogram;  // levels, bins, sizes (valid until moved below)
   auto row_of = [levels = tree.levels](double level) {
@@ -269,6 +271,8 @@ Diagnosis Diagnose(const Record& record,
   const int map_level = std::max(1, std::min(auto_level, needed_level + 2));
   if (options.kurtogram_map && options.kurtogram_max_level == 0 && map_level > kopt.max_level) {
     kopt.max_level = map_level;
+    kopt.keep_envelopes_max_hz = -1;  // the map keeps none
+    kopt.envelope_buffers = nullptr;
     d.kurtogram = FastKurtogram(analyzer, kopt);
   } else {
     d.kurtogram = std::move(analysis_kurtogram);
@@ -438,6 +442,8 @@ Diagnosis Diagnose(const Record& record,
       }
     }
   }
+
+  envelope_buffers = std::move(node_se);
 
   // Without any significant comb, report the band the kurtogram prefers (among candidates).
   BandResult chosen;

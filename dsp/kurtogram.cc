@@ -480,7 +480,9 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   // The chains are independent: one thread each at most. The arithmetic is the same whatever
   // the thread count, so the results are identical.
   std::vector<std::vector<double>> result(rows.size());
-  out.squared_envelopes.assign(rows.size(), {});
+  if (options.envelope_buffers) out.squared_envelopes = std::move(*options.envelope_buffers);
+  out.squared_envelopes.resize(rows.size());
+  for (auto& row : out.squared_envelopes) row.clear();  // kept rows are resized (capacity reused)
   out.envelope_sizes.assign(rows.size(), 0);
   for (const auto& chain : chains)
     for (const auto& row : chain) out.envelope_sizes[row.row] = row.m;

@@ -60,6 +60,10 @@ struct KurtogramOptions {
   // to its width in cyclic frequency is alias-free.
   double keep_envelopes_min_hz = 0;
   double keep_envelopes_max_hz = -1;
+  // Optional: vectors whose memory the kept envelopes reuse (moved into
+  // Kurtogram::squared_envelopes, which the caller may move back after use). ~2 MB per kept row at
+  // 10 s, 48 kHz: fresh allocations would cost page faults on every call.
+  std::vector<std::vector<float>>* envelope_buffers = nullptr;
 };
 
 struct KurtogramNode {
