@@ -351,7 +351,8 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFromSquaredEnvelope(std::span<cons
   auto& slot = workspace->plans_[m];
   if (!slot) slot = std::make_unique<PlansF>(m);
   PlansF& p = *slot;
-  std::memcpy(reinterpret_cast<float*>(p.packed.get()), se.data(), sizeof(float) * m);
+  // Real samples packed pairwise into the complex buffer (std::complex<float> is two floats).
+  std::copy(se.begin(), se.end(), reinterpret_cast<float*>(p.packed.get()));
   std::vector<double> power(alpha_bins + 1, 0.0);
   PackedSesPower(&p, m, alpha_bins, gain2, power.data());
   return power;
