@@ -31,7 +31,7 @@ SETS=${SPALLKIT_SIM_SETS:-"--set model.fidelity=hybrid --set mesh.size_mm=2.0 \
 echo "== simulate datasets/scenes/paper-verification.toml ($SETS)"
 # shellcheck disable=SC2086
 time "$SPALL" simulate datasets/scenes/paper-verification.toml -o "$OUT/run.h5" --csv "$OUT/run.csv" \
-  --quiet $SETS | tee "$OUT/simulate.txt"
+  $SETS | tee "$OUT/simulate.txt"
 echo "== diagnose $OUT/run.csv (N205EM, $RPM rpm)"
 "$SPALL" diagnose "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --plot-dir "$OUT/plots" | tee "$OUT/report.txt"
 "$SPALL" diagnose "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --json > "$OUT/report.json"
