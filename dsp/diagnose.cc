@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "dsp/explain.h"
 #include "dsp/prewhiten.h"
+#include "dsp/statistics.h"
 
 namespace spallkit::dsp {
 
@@ -121,23 +122,9 @@ double SquaredEnvelopeMean(const EnvelopeAnalyzer& analyzer, int k1, int k2) {
   const int n = analyzer.size();
   k1 = std::max(1, k1);
   k2 = std::min(static_cast<int>(spec.size()), k2) - 1;  // inclusive from here
-  // sum |X_k|^2 with independent vector accumulators (a plain loop is one serial chain of
-  // additions the compiler may not reassociate).
-  typedef double D4 __attribute__((vector_size(32)));
   const double* v = reinterpret_cast<const double*>(spec.data() + k1);
-  const int count = k2 >= k1 ? 2 * (k2 - k1 + 1) : 0;
-  D4 a = {0, 0, 0, 0}, b = a;
-  int j = 0;
-  for (; j + 8 <= count; j += 8) {
-    D4 x, y;
-    std::memcpy(&x, v + j, sizeof(x));
-    std::memcpy(&y, v + j + 4, sizeof(y));
-    a += x * x;
-    b += y * y;
-  }
-  a += b;
-  double sum = (a[0] + a[1]) + (a[2] + a[3]);
-  for (; j < count; ++j) sum += v[j] * v[j];
+  const size_t count = k2 >= k1 ? 2 * static_cast<size_t>(k2 - k1 + 1) : 0;
+  const double sum = SumOfSquares({v, count});
   return 4.0 * sum / (double(n) * double(n));
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "dsp/prewhiten.h"
+#include "dsp/statistics.h"
 
 namespace spallkit::dsp {
 
@@ -44,25 +45,7 @@ EnvelopeAnalyzer::SesWorkspace& EnvelopeAnalyzer::SesWorkspace::operator=(SesWor
 
 namespace {
 
-// sum v_j^2 and sum v_j with independent vector accumulators (GCC/Clang vector extension): a
-// plain loop is one serial chain of dependent additions, as the compiler may not reassociate.
-double SumOfSquares(const double* v, int count) {
-  typedef double D4 __attribute__((vector_size(32)));
-  D4 a = {0, 0, 0, 0}, b = a;
-  int j = 0;
-  for (; j + 8 <= count; j += 8) {
-    D4 x, y;
-    std::memcpy(&x, v + j, sizeof(x));
-    std::memcpy(&y, v + j + 4, sizeof(y));
-    a += x * x;
-    b += y * y;
-  }
-  a += b;
-  double total = (a[0] + a[1]) + (a[2] + a[3]);
-  for (; j < count; ++j) total += v[j] * v[j];
-  return total;
-}
-
+// sum v_j (float input, double accumulators) with independent vector accumulators.
 double Sum(const float* v, int count) {
   typedef float F8 __attribute__((vector_size(32)));
   typedef double D4 __attribute__((vector_size(32)));
@@ -261,8 +244,8 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
   // = gain * c with gain = rms * 2 / n (FillEnvelope's scale), so SE_true = gain^2 SE and
   // P_true = gain^4 P.
   const int nb = b.k2 - b.k1 + 1;
-  const double energy =
-      SumOfSquares(reinterpret_cast<const double*>(spectrum_.data() + b.k1), 2 * nb);
+  const double energy = SumOfSquares(
+      {reinterpret_cast<const double*>(spectrum_.data() + b.k1), static_cast<size_t>(2 * nb)});
   const double rms = std::sqrt(energy / nb);
   std::vector<double> power(b.alpha_bins + 1, 0.0);
   if (!(rms > 0.0)) return power;  // an empty band: SE is 0

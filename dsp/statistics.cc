@@ -86,4 +86,22 @@ TimeStatistics ComputeTimeStatistics(std::span<const double> x) {
   return s;
 }
 
+double SumOfSquares(std::span<const double> v) {
+  typedef double D4 __attribute__((vector_size(32)));
+  const int count = static_cast<int>(v.size());
+  D4 a = {0, 0, 0, 0}, b = a;
+  int j = 0;
+  for (; j + 8 <= count; j += 8) {
+    D4 x, y;
+    std::memcpy(&x, v.data() + j, sizeof(x));
+    std::memcpy(&y, v.data() + j + 4, sizeof(y));
+    a += x * x;
+    b += y * y;
+  }
+  a += b;
+  double total = (a[0] + a[1]) + (a[2] + a[3]);
+  for (; j < count; ++j) total += v[j] * v[j];
+  return total;
+}
+
 }  // namespace spallkit::dsp

@@ -17,4 +17,8 @@ struct TimeStatistics {
 // Throws InputError if x is empty or holds a non-finite sample.
 TimeStatistics ComputeTimeStatistics(std::span<const double> x);
 
+// sum v_j^2 with independent vector accumulators: a plain loop is one serial chain of dependent
+// additions (the compiler may not reassociate them), several times slower on long spectra.
+double SumOfSquares(std::span<const double> v);
+
 }  // namespace spallkit::dsp
