@@ -2,6 +2,7 @@
 // stderr with exit code 2.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -21,7 +22,9 @@ struct Result {
 };
 
 Result RunSpall(const std::string& args) {
-  const std::string err_path = std::filesystem::temp_directory_path() / "spall_cli_err.txt";
+  // Per process: ctest runs every TEST of this program as its own process, in parallel.
+  const std::string err_path = std::filesystem::temp_directory_path() /
+                               ("spall_cli_err_" + std::to_string(::getpid()) + ".txt");
   const std::string cmd = std::string(SPALLKIT_SPALL_EXE) + " " + args + " 2>" + err_path;
   Result r;
   FILE* p = popen(cmd.c_str(), "r");
