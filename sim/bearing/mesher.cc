@@ -338,11 +338,9 @@ fe::Mesh MakeAdapter(const SceneGeometry& g,
   return mesh;
 }
 
-}  // namespace
-
-BearingMesh MeshBearing(const Scene& scene) {
-  const SceneGeometry& g = scene.geometry;
-  const double h = scene.mesh.size_m, hc = scene.mesh.contact_size_m;
+// Radii (raceways moved out/in by P_d/4 each, so a centred roller has P_d/2 of play in all) and
+// roller angles (roller 0 on the load line at the bottom), shared by both meshers.
+BearingMesh BearingLayout(const SceneGeometry& g) {
   BearingMesh out;
   const int z = g.bearing.num_elements;
   out.roller_radius_m = 0.5 * g.bearing.element_diameter_m;
@@ -353,11 +351,15 @@ BearingMesh MeshBearing(const Scene& scene) {
       0.5 * g.bearing.inner_raceway_diameter_m - 0.25 * g.diametral_clearance_m;
   for (int j = 0; j < z; ++j)
     out.roller_angles_rad.push_back(-kPi / 2 + g.roller_phase_rad + 2 * kPi * j / z);
+  return out;
+}
 
-  std::vector<fe::Mesh> parts;
-  // Outer ring: raceway on the inside; node 0 at the bottom so the adapter seat matches.
-  fe::AnnulusSpec os;
-  os.inner_radius = out.outer_raceway_radius_m;
+// Outer ring: raceway on the inside, node 0 at the bottom so the adapter seat matches; radial
+// layers graded from the contact size at the raceway to the mesh size.
+fe::Mesh MakeOuterRing(
+    const SceneGeometry& g, double raceway_radius, double h, double hc, fe::AnnulusSpec* spec) {
+  fe::AnnulusSpec& os = *spec;
+  os.inner_radius = raceway_radius;
   os.outer_radius = 0.5 * g.outer_ring_outer_diameter_m;
   os.n_theta = static_cast<int>(std::lround(2 * kPi * os.inner_radius / hc));
   os.n_radial = std::max(2, static_cast<int>(std::lround((os.outer_radius - os.inner_radius) / h)));
@@ -366,6 +368,20 @@ BearingMesh MeshBearing(const Scene& scene) {
   fe::Mesh outer = fe::MakeAnnulus("outer_ring", os);
   Rename(&outer, "outer_ring.inner", "outer_ring.raceway");
   Rename(&outer, "outer_ring.outer", "outer_ring.outside");
+  return outer;
+}
+
+}  // namespace
+
+BearingMesh MeshBearing(const Scene& scene) {
+  const SceneGeometry& g = scene.geometry;
+  const double h = scene.mesh.size_m, hc = scene.mesh.contact_size_m;
+  BearingMesh out = BearingLayout(g);
+
+  std::vector<fe::Mesh> parts;
+  // Outer ring: raceway on the inside; node 0 at the bottom so the adapter seat matches.
+  fe::AnnulusSpec os;
+  fe::Mesh outer = MakeOuterRing(g, out.outer_raceway_radius_m, h, hc, &os);
   // Inner ring: raceway on the outside.
   fe::AnnulusSpec is;
   is.inner_radius = 0.5 * g.inner_ring_bore_diameter_m;
@@ -380,7 +396,7 @@ BearingMesh MeshBearing(const Scene& scene) {
   parts.push_back(std::move(outer));
   parts.push_back(std::move(inner));
   parts.push_back(MakeCage(g, out.roller_angles_rad, hc, h));
-  for (int j = 0; j < z; ++j) {
+  for (int j = 0; j < g.bearing.num_elements; ++j) {
     const double phi = out.roller_angles_rad[j];
     const Vec centre{out.pitch_radius_m * std::cos(phi), out.pitch_radius_m * std::sin(phi)};
     const Defect* defect = nullptr;
@@ -409,26 +425,9 @@ BearingMesh MeshBearing(const Scene& scene) {
 BearingMesh MeshBearingHousing(const Scene& scene) {
   const SceneGeometry& g = scene.geometry;
   const double h = scene.mesh.size_m, hc = scene.mesh.contact_size_m;
-  BearingMesh out;
-  const int z = g.bearing.num_elements;
-  out.roller_radius_m = 0.5 * g.bearing.element_diameter_m;
-  out.pitch_radius_m = 0.5 * g.bearing.pitch_diameter_m;
-  out.outer_raceway_radius_m =
-      0.5 * g.bearing.outer_raceway_diameter_m + 0.25 * g.diametral_clearance_m;
-  out.inner_raceway_radius_m =
-      0.5 * g.bearing.inner_raceway_diameter_m - 0.25 * g.diametral_clearance_m;
-  for (int j = 0; j < z; ++j)
-    out.roller_angles_rad.push_back(-kPi / 2 + g.roller_phase_rad + 2 * kPi * j / z);
+  BearingMesh out = BearingLayout(g);
   fe::AnnulusSpec os;
-  os.inner_radius = out.outer_raceway_radius_m;
-  os.outer_radius = 0.5 * g.outer_ring_outer_diameter_m;
-  os.n_theta = static_cast<int>(std::lround(2 * kPi * os.inner_radius / hc));
-  os.n_radial = std::max(2, static_cast<int>(std::lround((os.outer_radius - os.inner_radius) / h)));
-  os.theta0 = -kPi / 2;
-  os.radial_ratio = h / hc;
-  fe::Mesh outer = fe::MakeAnnulus("outer_ring", os);
-  Rename(&outer, "outer_ring.inner", "outer_ring.raceway");
-  Rename(&outer, "outer_ring.outer", "outer_ring.outside");
+  fe::Mesh outer = MakeOuterRing(g, out.outer_raceway_radius_m, h, hc, &os);
   std::vector<fe::Mesh> parts;
   parts.push_back(std::move(outer));
   parts.push_back(MakeAdapter(
