@@ -763,14 +763,24 @@ std::vector<unsigned char> RenderLinePlotPng(const LinePlot& plot) {
   return EncodePng(img);
 }
 
-void WriteLinePlot(const std::string& png_path, const LinePlot& plot) {
+namespace {
+
+// Renders with `render` and writes the PNG atomically; a bad plot spec is reported with the path.
+template <typename Render>
+void RenderToFile(const std::string& png_path, Render render) {
   std::vector<unsigned char> png;
   try {
-    png = RenderLinePlotPng(plot);
+    png = render();
   } catch (const InputError& e) {
     throw InputError(png_path + ": " + e.what());
   }
   WritePng(png_path, png);
+}
+
+}  // namespace
+
+void WriteLinePlot(const std::string& png_path, const LinePlot& plot) {
+  RenderToFile(png_path, [&] { return RenderLinePlotPng(plot); });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -960,13 +970,7 @@ std::vector<unsigned char> RenderHeatmapPng(const Heatmap& map) {
 }
 
 void WriteHeatmap(const std::string& png_path, const Heatmap& map) {
-  std::vector<unsigned char> png;
-  try {
-    png = RenderHeatmapPng(map);
-  } catch (const InputError& e) {
-    throw InputError(png_path + ": " + e.what());
-  }
-  WritePng(png_path, png);
+  RenderToFile(png_path, [&] { return RenderHeatmapPng(map); });
 }
 
 }  // namespace spallkit::dsp
