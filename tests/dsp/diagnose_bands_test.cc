@@ -17,13 +17,6 @@ namespace {
 using spallkit::testing::FaultSignalSpec;
 using spallkit::testing::MakeFaultSignal;
 
-Record MakeRecord(const FaultSignalSpec& spec) {
-  Record r;
-  r.samples = MakeFaultSignal(spec);
-  r.sample_rate_hz = spec.fs_hz;
-  return r;
-}
-
 TEST(DiagnoseBands, FaultStopsTheSearchEarlyWithTheSameVerdict) {
   const BearingGeometry g = CatalogBearing("6205");
   const BearingFrequencies f = ComputeFrequencies(g, 29.95);
@@ -37,7 +30,7 @@ TEST(DiagnoseBands, FaultStopsTheSearchEarlyWithTheSameVerdict) {
   s.shaft_hz = f.shaft_hz;
   s.shaft_amplitude = 0.5;
   s.mains_amplitude = 0.2;
-  const Record r = MakeRecord(s);
+  const Record r = spallkit::testing::MakeFaultRecord(s);
   const Diagnosis staged = Diagnose(r, g, f.shaft_hz);
   DiagnoseOptions all;
   all.first_bands = 0;
@@ -72,7 +65,7 @@ TEST(DiagnoseBands, HealthyRecordsAt48kHzFalseAlarmRateWithinDesign) {
       s.duration_s = 0.5;
       s.noise_rms = 1.0;
       s.seed = 7000 + seed;
-      const Diagnosis d = Diagnose(MakeRecord(s), g, f.shaft_hz, o);
+      const Diagnosis d = Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz, o);
       if (d.verdict != "healthy") ++alarms;
       if (d.verdict == "healthy") {
         EXPECT_EQ(d.searched_bands, 64);
@@ -86,7 +79,8 @@ TEST(DiagnoseBands, HealthyRecordsAt48kHzFalseAlarmRateWithinDesign) {
       t.mains_amplitude = 0.2;
       t.extra_line_hz = f.bpfo_hz;
       t.extra_line_amplitude = 0.3;
-      if (Diagnose(MakeRecord(t), g, f.shaft_hz, o).verdict != "healthy") ++alarms_lines;
+      if (Diagnose(spallkit::testing::MakeFaultRecord(t), g, f.shaft_hz, o).verdict != "healthy")
+        ++alarms_lines;
     }
     EXPECT_EQ(searched, 64);
     const double margin = 3.0 * std::sqrt(alpha * (1 - alpha) / kRecords);

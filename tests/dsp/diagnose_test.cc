@@ -17,14 +17,6 @@ namespace {
 using spallkit::testing::FaultSignalSpec;
 using spallkit::testing::MakeFaultSignal;
 
-Record MakeRecord(const FaultSignalSpec& spec) {
-  Record r;
-  r.samples = MakeFaultSignal(spec);
-  r.sample_rate_hz = spec.fs_hz;
-  r.source = "synthetic";
-  return r;
-}
-
 const FamilyDetection& Find(const Diagnosis& d, FaultComponent c) {
   for (const auto& f : d.faults)
     if (f.component == c) return f;
@@ -79,7 +71,7 @@ TEST_P(FaultRecovery, VerdictAndRateWithinOnePermille) {
       break;
   }
   s.resonance_hz = 0.27 * c.fs;
-  const Diagnosis d = Diagnose(MakeRecord(s), g, f.shaft_hz);
+  const Diagnosis d = Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz);
   SCOPED_TRACE(d.BriefReport());
   EXPECT_EQ(d.verdict, ComponentName(c.component));
   const FamilyDetection& det = Find(d, c.component);
@@ -115,7 +107,7 @@ TEST(Diagnose, RecoversOuterRaceWithNominalSpeedThreePercentOff) {
   FaultSignalSpec s = Base(f.shaft_hz, 12000, 3);
   s.rate_hz = f.bpfo_hz * 0.995;
   for (double off : {0.97, 1.03}) {
-    const Diagnosis d = Diagnose(MakeRecord(s), g, f.shaft_hz * off);
+    const Diagnosis d = Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz * off);
     SCOPED_TRACE(d.BriefReport());
     EXPECT_EQ(d.verdict, "outer_race");
     ASSERT_TRUE(d.measured_shaft_hz.has_value());
@@ -140,12 +132,14 @@ TEST(Diagnose, HealthyRecordsFalseAlarmRateWithinDesign) {
       s.duration_s = 1.0;
       s.noise_rms = 1.0;
       s.seed = 1000 + seed;
-      if (Diagnose(MakeRecord(s), g, f.shaft_hz, o).verdict != "healthy") ++alarms;
+      if (Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz, o).verdict != "healthy")
+        ++alarms;
       FaultSignalSpec t = Base(f.shaft_hz, 12000, 5000 + seed);
       t.duration_s = 1.0;
       t.extra_line_hz = f.bpfo_hz;
       t.extra_line_amplitude = 0.3;
-      if (Diagnose(MakeRecord(t), g, f.shaft_hz, o).verdict != "healthy") ++alarms_lines;
+      if (Diagnose(spallkit::testing::MakeFaultRecord(t), g, f.shaft_hz, o).verdict != "healthy")
+        ++alarms_lines;
     }
     const double margin = 3.0 * std::sqrt(alpha * (1 - alpha) / kRecords);
     EXPECT_LE(alarms / double(kRecords), alpha + margin) << "alpha " << alpha;
@@ -164,7 +158,7 @@ TEST(Diagnose, JsonHasTheStableKeys) {
   s.rate_hz = f.bpfi_hz;
   s.modulation_hz = f.shaft_hz;
   s.modulation_depth = 0.8;
-  const Diagnosis d = Diagnose(MakeRecord(s), g, f.shaft_hz);
+  const Diagnosis d = Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz);
   const auto j = nlohmann::json::parse(d.ToJson());
   EXPECT_EQ(j["verdict"], "inner_race");
   ASSERT_EQ(j["faults"].size(), 4u);

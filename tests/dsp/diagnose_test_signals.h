@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "dsp/record.h"
+
 namespace spallkit::testing {
 
 struct FaultSignalSpec {
@@ -71,6 +73,15 @@ inline std::vector<double> MakeFaultSignal(const FaultSignalSpec& s) {
     x[i] += v;
   }
   return x;
+}
+
+// The signal as a record at its own sample rate, as a reader would return it.
+inline dsp::Record MakeFaultRecord(const FaultSignalSpec& spec) {
+  dsp::Record r;
+  r.samples = MakeFaultSignal(spec);
+  r.sample_rate_hz = spec.fs_hz;
+  r.source = "synthetic";
+  return r;
 }
 
 }  // namespace spallkit::testing

@@ -14,13 +14,6 @@ namespace {
 using spallkit::testing::FaultSignalSpec;
 using spallkit::testing::MakeFaultSignal;
 
-Record MakeRecord(const FaultSignalSpec& s) {
-  Record r;
-  r.samples = MakeFaultSignal(s);
-  r.sample_rate_hz = s.fs_hz;
-  return r;
-}
-
 FaultSignalSpec Spec(double shaft_hz, double rate_hz) {
   FaultSignalSpec s;
   s.fs_hz = 24000.0;
@@ -43,7 +36,7 @@ TEST(DiagnoseThreads, IdenticalForEveryThreadCount) {
   const double shaft_hz = 1797.0 / 60.0;
   const BearingFrequencies f = ComputeFrequencies(g, shaft_hz);
   for (const double rate : {0.99 * f.bpfo_hz, 0.0}) {
-    const Record record = MakeRecord(Spec(shaft_hz, rate));
+    const Record record = spallkit::testing::MakeFaultRecord(Spec(shaft_hz, rate));
     DiagnoseOptions o;
     o.threads = 1;
     const Diagnosis one = Diagnose(record, g, shaft_hz, o);
