@@ -63,12 +63,19 @@ void RollerProfile::RimCorners(double cx[2], double cy[2]) const {
   }
 }
 
-double RollerProfile::Support(double a) const {
-  if (!InSpall(a)) return radius;
-  double cx[2], cy[2];
-  RimCorners(cx, cy);
+double RollerProfile::Support(double a) const { return SupportPoint(a, nullptr, nullptr); }
+
+double RollerProfile::SupportPoint(double a, double* px, double* py) const {
   const double ux = std::cos(a), uy = std::sin(a);
-  return std::max(cx[0] * ux + cy[0] * uy, cx[1] * ux + cy[1] * uy) + edge_radius;
+  double x = radius * ux, y = radius * uy;
+  if (InSpall(a)) {
+    double cx[2], cy[2];
+    RimCorners(cx, cy);
+    const int k = cx[0] * ux + cy[0] * uy >= cx[1] * ux + cy[1] * uy ? 0 : 1;
+    x = cx[k] + edge_radius * ux, y = cy[k] + edge_radius * uy;
+  }
+  if (px) *px = x, *py = y;
+  return x * ux + y * uy;
 }
 
 RollerProfile::Properties RollerProfile::SectionProperties() const {
@@ -314,16 +321,27 @@ int HybridRollers::Kernel(double th, int* idx, double* w) const {
   return count;
 }
 
-double HybridRollers::RaceRadius(const fe::NodalState& s, double th) const {
-  int idx[kMaxKernel];
-  double w[kMaxKernel];
-  const int n = Kernel(th, idx, w);
-  double u = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const int id = ring_nodes_[idx[i]];
-    u += w[i] * ((s.x[id] - s.x0[id]) * ring_ex_[idx[i]] + (s.y[id] - s.y0[id]) * ring_ey_[idx[i]]);
+double HybridRollers::RaceRadius(const fe::NodalState& s, double th, double* slope) const {
+  // R(th) = R0 + sum_k w_k(th) u_k with w_k = a_k / S, a_k = 1 - s_k^2, S = sum a_k and
+  // s_k = R0 (theta_k - th) / L, so dw_k/dth = (a_k' - w_k S') / S with a_k' = 2 s_k R0 / L.
+  const int n = static_cast<int>(ring_nodes_.size());
+  const double spacing = outer_radius_ * ring_dtheta_;
+  const int m = static_cast<int>(std::ceil(spread_ / spacing));
+  const long k0 = std::lround((th - ring_theta0_) / ring_dtheta_);
+  double sum_a = 0.0, sum_da = 0.0, sum_au = 0.0, sum_dau = 0.0;
+  for (long k = k0 - m; k <= k0 + m; ++k) {
+    const double sk = outer_radius_ * (ring_theta0_ + k * ring_dtheta_ - th) / spread_;
+    const double a = 1.0 - sk * sk;
+    if (a <= 0.0) continue;
+    const int i = static_cast<int>(((k % n) + n) % n);
+    const int id = ring_nodes_[i];
+    const double u = (s.x[id] - s.x0[id]) * ring_ex_[i] + (s.y[id] - s.y0[id]) * ring_ey_[i];
+    const double da = 2.0 * sk * outer_radius_ / spread_;
+    sum_a += a, sum_da += da, sum_au += a * u, sum_dau += da * u;
   }
-  return outer_radius_ + u;
+  const double mean_u = sum_au / sum_a;
+  if (slope) *slope = (sum_dau - mean_u * sum_da) / sum_a;
+  return outer_radius_ + mean_u;
 }
 
 void HybridRollers::RollerCentre(int j, double* x, double* y) const {
@@ -476,17 +494,31 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
   const double cc = std::cos(cage_.angle), cs = std::sin(cage_.angle);
   for (int j = 0; j < z; ++j) {
     Point pts[2];
-    // Outer race.
-    int n = RacePoints(j, 0, pts);
+    // Outer race. A profile point is a circle of radius rad around a centre q (the roller's
+    // circle, or a rim fillet: its centre and radius, a corner with radius 0); its gap is
+    // delta = |q| + rad - R(theta_q). The force on the roller is -Q grad_q delta, i.e. along the
+    // normal of the DEFORMED raceway, e_q - (R'/|q|) t_q: with the radial normal alone a roller
+    // moving along a sloped (loaded) raceway would change delta without work (energy leak).
+    // It acts through q (no torque about a circle centre) at the surface point q - rad n.
     const double rho = profiles_[j].edge_radius;
+    int n = RacePoints(j, 0, pts);
+    double qx[2], qy[2], rad[2];
+    if (n == 1) {
+      RollerCentre(j, &qx[0], &qy[0]);
+      rad[0] = profiles_[j].radius;
+    } else {
+      for (int k = 0; k < 2; ++k) qx[k] = pts[k].px, qy[k] = pts[k].py, rad[k] = rho;
+    }
     for (int k = 0; k < n; ++k) {
-      if (n == 2) {  // rim edge: its own normal (race curvature), fillet surface point
-        const double d = std::hypot(pts[k].px, pts[k].py);
-        pts[k].nx = -pts[k].px / d, pts[k].ny = -pts[k].py / d;
-        pts[k].px -= rho * pts[k].nx, pts[k].py -= rho * pts[k].ny;
-      }
-      const double th = std::atan2(pts[k].py, pts[k].px);
-      pts[k].delta = std::hypot(pts[k].px, pts[k].py) - RaceRadius(state, th);
+      const double d = std::hypot(qx[k], qy[k]);
+      const double ex = qx[k] / d, ey = qy[k] / d;
+      double slope;
+      const double race = RaceRadius(state, std::atan2(qy[k], qx[k]), &slope);
+      const double gx = ex + slope / d * ey, gy = ey - slope / d * ex;  // e - (R'/d) t
+      const double g = std::hypot(gx, gy);
+      pts[k].nx = -gx / g, pts[k].ny = -gy / g;
+      pts[k].px = qx[k] - rad[k] * pts[k].nx, pts[k].py = qy[k] - rad[k] * pts[k].ny;
+      pts[k].delta = d + rad[k] - race;
     }
     outer_force_[j] = contact(j, 0, true, pts, n, &friction_[4 * j]);
     // Inner race (rigid ring on the shaft).
@@ -509,12 +541,22 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
     const double twx = -std::sin(psi), twy = std::cos(psi);
     const double lateral = (cx - cage_.x) * twx + (cy - cage_.y) * twy;
     const double a_lead = psi + 0.5 * kPi - rollers_[j].angle;
-    const double h_lead = profiles_[j].Support(a_lead);
-    const double h_trail = profiles_[j].Support(a_lead + kPi);
-    Point lead{
-        cx + h_lead * twx, cy + h_lead * twy, -twx, -twy, lateral + h_lead - pocket_half_width_};
-    Point trail{
-        cx - h_trail * twx, cy - h_trail * twy, twx, twy, -lateral + h_trail - pocket_half_width_};
+    // The force acts at the profile's extreme point towards the wall (a rim edge when the spall
+    // faces it), so that its torque matches the gap's dependence on the roller's angle.
+    double lx, ly, kx, ky;
+    const double h_lead = profiles_[j].SupportPoint(a_lead, &lx, &ly);
+    const double h_trail = profiles_[j].SupportPoint(a_lead + kPi, &kx, &ky);
+    const double rc = std::cos(rollers_[j].angle), rs = std::sin(rollers_[j].angle);
+    Point lead{cx + rc * lx - rs * ly,
+               cy + rs * lx + rc * ly,
+               -twx,
+               -twy,
+               lateral + h_lead - pocket_half_width_};
+    Point trail{cx + rc * kx - rs * ky,
+                cy + rs * kx + rc * ky,
+                twx,
+                twy,
+                -lateral + h_trail - pocket_half_width_};
     (void)cc, (void)cs;
     cage_force_[j] = contact(j, 2, false, &lead, 1, &friction_[4 * j + 2]) +
                      contact(j, 2, false, &trail, 1, &friction_[4 * j + 3]);

@@ -74,6 +74,9 @@ struct RollerProfile {
   void RimCorners(double cx[2], double cy[2]) const;
   // Support function: max over the profile of p . (cos a, sin a), p from the circle centre.
   double Support(double a) const;
+  // The same, and the extreme point itself (body frame, from the circle centre) in *px, *py:
+  // a rim edge's surface point when a points into the spall, else radius * (cos a, sin a).
+  double SupportPoint(double a, double* px, double* py) const;
   // Section properties: area (m^2), centroid (m, from the circle centre) and polar second
   // moment about the centroid (m^4). Exact up to a 1e-7 quadrature of the spall region.
   struct Properties {
@@ -156,7 +159,9 @@ class HybridRollers : public solver::ForceContributor {
   int RacePoints(int j, int which, Point out[2]) const;
   // Kernel weights of the raceway nodes around angle th: indices into ring_nodes_ and weights.
   int Kernel(double th, int* idx, double* w) const;
-  double RaceRadius(const fe::NodalState& s, double th) const;
+  // Deformed raceway radius at angle th (reference raceway radius + kernel-averaged radial
+  // displacement) and, when slope != nullptr, its derivative dR/dth (m/rad).
+  double RaceRadius(const fe::NodalState& s, double th, double* slope = nullptr) const;
 
   Scene scene_;
   HybridOptions options_;
