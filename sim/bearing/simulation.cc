@@ -227,13 +227,15 @@ void Simulation::WriteOutputs(const SimulationSummary& summary) const {
   if (!options_.csv_path.empty()) {
     const auto& channels = model_->sensor_channels();
     std::vector<std::pair<std::string, std::vector<double>>> cols;
-    cols.emplace_back("time", recorder_->Find("/time")->data);
+    cols.emplace_back("time (s)", recorder_->Find("/time")->data);
     bool y = false, x = false;
     for (size_t c = 0; c < channels.size(); ++c) {
       if (channels[c].direction == 'y' && !y)
-        cols.emplace_back("accel_y", recorder_->Acceleration(static_cast<int>(c))), y = true;
+        cols.emplace_back("accel_y (m/s^2)", recorder_->Acceleration(static_cast<int>(c))),
+            y = true;
       if (channels[c].direction == 'x' && !x)
-        cols.emplace_back("accel_z", recorder_->Acceleration(static_cast<int>(c))), x = true;
+        cols.emplace_back("accel_z (m/s^2)", recorder_->Acceleration(static_cast<int>(c))),
+            x = true;
     }
     if (cols.size() < 2)
       throw InputError("simulate: --csv needs the 'acceleration' output and at least one sensor");
