@@ -102,6 +102,31 @@ TEST(BearingMesh, PaperMeshHasValidElementsAndReportsQuality) {
   std::printf("%s", q.Report().c_str());
 }
 
+// Smallest element length of each part, L_e = A / longest side or diagonal (the explicit step is
+// L_e / c): the rollers' O-grid must not hold elements much smaller than the contact spacing
+// (the old layout's core-corner elements had 0.27 contact sizes and set the step), and the
+// adapter's seat corners must stay above the rollers.
+TEST(BearingMesh, PaperMeshSmallestElementsAreNotFarBelowTheContactSize) {
+  const Scene s = PaperScene({});
+  const fe::Mesh& m = MeshBearing(s).mesh;
+  std::vector<double> lmin(m.num_parts(), 1e9);
+  for (int e = 0; e < m.num_elements(); ++e) {
+    const auto& q = m.quads[e];
+    double l2 = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        l2 = std::max(l2, std::pow(m.x[q[i]] - m.x[q[j]], 2) + std::pow(m.y[q[i]] - m.y[q[j]], 2));
+    double& v = lmin[m.element_part[e]];
+    v = std::min(v, fe::QuadArea(m, e) / std::sqrt(l2));
+  }
+  const double hc = s.mesh.contact_size_m;
+  for (int p = 0; p < m.num_parts(); ++p) {
+    SCOPED_TRACE(m.part_names[p]);
+    EXPECT_GT(lmin[p], 0.35 * hc);  // new roller layout 0.38 hc (old 0.27 hc)
+    EXPECT_GE(lmin[PartIndex(m, "adapter")], lmin[PartIndex(m, "roller1")]);
+  }
+}
+
 TEST(BearingMesh, PartAreasMatchTheGeometry) {
   const Scene s = PaperScene({"mesh.size_mm=0.5"});
   const BearingMesh bm = MeshBearing(s);
