@@ -14,6 +14,9 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kMaxKernel = 64;
+// Stick springs per roller: outer race, inner race, leading wall, trailing wall (the notched
+// part of the roller), then outer and inner race of the intact part of a partial-length spall.
+constexpr int kFrictionSlots = 6;
 // Safety factor on the contacts' stable step (the solver scales only the element step).
 constexpr double kContactSafety = 0.8;
 
@@ -182,16 +185,28 @@ HybridRollers::HybridRollers(const Scene& scene,
                            " must be >= 0, smaller than the spall depth, and leave the fillet "
                            "inside the roller");
       }
+    // A spall shorter than the roller: the spalled length fraction f has the notched section,
+    // the rest the full circle; mass properties are the length-weighted mixture.
+    double f = 1.0;
+    for (const Defect& d : scene_.defects)
+      if (d.roller == j && d.length_m > 0) f = std::min(1.0, d.length_m / t);
     const RollerProfile::Properties sp = p.SectionProperties();
+    const double a_c = kPi * p.radius * p.radius, polar_c = 0.5 * a_c * p.radius * p.radius;
+    const double area = f * sp.area + (1 - f) * a_c;
+    const double cx = f * sp.area * sp.cx / area, cy = f * sp.area * sp.cy / area;
+    const double polar =
+        f * (sp.polar + sp.area * ((sp.cx - cx) * (sp.cx - cx) + (sp.cy - cy) * (sp.cy - cy))) +
+        (1 - f) * (polar_c + a_c * (cx * cx + cy * cy));
     profiles_.push_back(p);
-    roller_mass_.push_back(rho_r * t * sp.area);
-    roller_inertia_.push_back(rho_r * t * sp.polar);
-    centroid_x_.push_back(sp.cx);
-    centroid_y_.push_back(sp.cy);
+    spall_fraction_.push_back(p.spalled ? f : 1.0);
+    roller_mass_.push_back(rho_r * t * area);
+    roller_inertia_.push_back(rho_r * t * polar);
+    centroid_x_.push_back(cx);
+    centroid_y_.push_back(cy);
     pocket_angle_.push_back(phi);
     Body b;
-    b.x = housing.pitch_radius_m * std::cos(phi) + sp.cx;
-    b.y = housing.pitch_radius_m * std::sin(phi) + sp.cy;
+    b.x = housing.pitch_radius_m * std::cos(phi) + cx;
+    b.y = housing.pitch_radius_m * std::sin(phi) + cy;
     rollers_.push_back(b);
   }
 
@@ -292,7 +307,7 @@ HybridRollers::HybridRollers(const Scene& scene,
     dt_limit_ = kContactSafety * std::min(roller_dt_, ring_dt_);
   }
 
-  friction_.assign(4 * z, 0.0);
+  friction_.assign(kFrictionSlots * z, 0.0);
   outer_force_.assign(z, 0.0);
   inner_force_.assign(z, 0.0);
   cage_force_.assign(z, 0.0);
@@ -351,9 +366,8 @@ void HybridRollers::RollerCentre(int j, double* x, double* y) const {
   *y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
 }
 
-int HybridRollers::RacePoints(int j, int which, Point out[2]) const {
+int HybridRollers::RacePoints(int j, int which, const RollerProfile& p, Point out[2]) const {
   // Positions only; the outer race radius is filled in by the caller (needs the nodal state).
-  const RollerProfile& p = profiles_[j];
   const Body& b = rollers_[j];
   double cx, cy;
   RollerCentre(j, &cx, &cy);
@@ -430,7 +444,14 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
   };
 
   // One contact (1 or 2 points) of roller j with a counter body; returns the normal force.
-  auto contact = [&](int j, int body, bool palmgren, Point* pts, int npts, double* spring) {
+  // `scale`: the share of the Palmgren stiffness (the contact's length fraction).
+  auto contact = [&](int j,
+                     int body,
+                     bool palmgren,
+                     Point* pts,
+                     int npts,
+                     double* spring,
+                     double scale = 1.0) {
     const Body& b = rollers_[j];
     // Damping of each contact: a fraction of ITS critical value, i.e. with the reduced mass of
     // the roller and the counter body (LS-DYNA's viscous contact damping does the same with the
@@ -445,7 +466,7 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
       if (!(p.delta > 0)) continue;
       double qe, kn;
       if (palmgren) {
-        qe = k_c_ * std::pow(p.delta, 10.0 / 9.0);
+        qe = scale * k_c_ * std::pow(p.delta, 10.0 / 9.0);
         kn = 10.0 / 9.0 * qe / p.delta;
         potential += qe * p.delta * (9.0 / 19.0);
       } else {
@@ -492,7 +513,10 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
   };
 
   const double cc = std::cos(cage_.angle), cs = std::sin(cage_.angle);
-  for (int j = 0; j < z; ++j) {
+  // Both race contacts of roller j for one profile (the notched or, for the intact part of a
+  // partial-length spall, the full circle) carrying `scale` of the Palmgren stiffness; the
+  // stick springs are friction_[slot], friction_[slot + 1]. Adds to outer_force_/inner_force_.
+  auto race_contacts = [&](int j, const RollerProfile& prof, double scale, int slot) {
     Point pts[2];
     // Outer race. A profile point is a circle of radius rad around a centre q (the roller's
     // circle, or a rim fillet: its centre and radius, a corner with radius 0); its gap is
@@ -500,12 +524,12 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
     // normal of the DEFORMED raceway, e_q - (R'/|q|) t_q: with the radial normal alone a roller
     // moving along a sloped (loaded) raceway would change delta without work (energy leak).
     // It acts through q (no torque about a circle centre) at the surface point q - rad n.
-    const double rho = profiles_[j].edge_radius;
-    int n = RacePoints(j, 0, pts);
+    const double rho = prof.edge_radius;
+    int n = RacePoints(j, 0, prof, pts);
     double qx[2], qy[2], rad[2];
     if (n == 1) {
       RollerCentre(j, &qx[0], &qy[0]);
-      rad[0] = profiles_[j].radius;
+      rad[0] = prof.radius;
     } else {
       for (int k = 0; k < 2; ++k) qx[k] = pts[k].px, qy[k] = pts[k].py, rad[k] = rho;
     }
@@ -520,9 +544,9 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
       pts[k].px = qx[k] - rad[k] * pts[k].nx, pts[k].py = qy[k] - rad[k] * pts[k].ny;
       pts[k].delta = d + rad[k] - race;
     }
-    outer_force_[j] = contact(j, 0, true, pts, n, &friction_[4 * j]);
+    outer_force_[j] += contact(j, 0, true, pts, n, &friction_[slot], scale);
     // Inner race (rigid ring on the shaft).
-    n = RacePoints(j, 1, pts);
+    n = RacePoints(j, 1, prof, pts);
     for (int k = 0; k < n; ++k) {
       const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y, d = std::hypot(ex, ey);
       if (n == 2) {  // rim edge: normal through the fillet centre, surface point rho closer
@@ -533,7 +557,16 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
         pts[k].delta = inner_radius_ - d;
       }
     }
-    inner_force_[j] = contact(j, 1, true, pts, n, &friction_[4 * j + 1]);
+    inner_force_[j] += contact(j, 1, true, pts, n, &friction_[slot + 1], scale);
+  };
+
+  for (int j = 0; j < z; ++j) {
+    const double f = spall_fraction_[j];
+    outer_force_[j] = inner_force_[j] = 0.0;
+    race_contacts(j, profiles_[j], f, kFrictionSlots * j);
+    RollerProfile circle = profiles_[j];
+    circle.spalled = false;
+    if (f < 1.0) race_contacts(j, circle, 1.0 - f, kFrictionSlots * j + 4);
     // Cage pocket walls: straight lines +-W/2 from the pocket's centre line.
     double cx, cy;
     RollerCentre(j, &cx, &cy);
@@ -544,8 +577,10 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
     // The force acts at the profile's extreme point towards the wall (a rim edge when the spall
     // faces it), so that its torque matches the gap's dependence on the roller's angle.
     double lx, ly, kx, ky;
-    const double h_lead = profiles_[j].SupportPoint(a_lead, &lx, &ly);
-    const double h_trail = profiles_[j].SupportPoint(a_lead + kPi, &kx, &ky);
+    // (The intact part of a partial-length spall reaches further than the notched part.)
+    const RollerProfile& wall_prof = f < 1.0 ? circle : profiles_[j];
+    const double h_lead = wall_prof.SupportPoint(a_lead, &lx, &ly);
+    const double h_trail = wall_prof.SupportPoint(a_lead + kPi, &kx, &ky);
     const double rc = std::cos(rollers_[j].angle), rs = std::sin(rollers_[j].angle);
     Point lead{cx + rc * lx - rs * ly,
                cy + rs * lx + rc * ly,
@@ -558,8 +593,8 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
                 twy,
                 -lateral + h_trail - pocket_half_width_};
     (void)cc, (void)cs;
-    cage_force_[j] = contact(j, 2, false, &lead, 1, &friction_[4 * j + 2]) +
-                     contact(j, 2, false, &trail, 1, &friction_[4 * j + 3]);
+    cage_force_[j] = contact(j, 2, false, &lead, 1, &friction_[kFrictionSlots * j + 2]) +
+                     contact(j, 2, false, &trail, 1, &friction_[kFrictionSlots * j + 3]);
     // Radial retention (roller-guided cage): the pocket keeps the roller within
     // +-cage_radial_play of the pitch radius of the cage frame, else the cage could drift
     // sideways with the rollers sliding along their orbits (walls alone allow that mode).
@@ -636,7 +671,7 @@ std::string HybridRollers::SaveState() const {
 
 void HybridRollers::LoadState(const std::string& bytes) {
   const size_t z = rollers_.size();
-  const size_t n = 6 * (z + 2) + 4 * z + 3 * z + 6;
+  const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 6;
   if (bytes.size() != n * sizeof(double))
     throw InputError("hybrid_rollers: checkpoint state has the wrong size");
   std::vector<double> v(n);

@@ -130,6 +130,8 @@ class HybridRollers : public solver::ForceContributor {
   const Body& cage() const { return cage_; }
   const Body& shaft() const { return shaft_; }
   const RollerProfile& profile(int j) const { return profiles_[j]; }
+  // Fraction of roller j's length that carries its spall (1: through-length or healthy).
+  double spall_length_fraction(int j) const { return spall_fraction_[j]; }
   double roller_mass(int j) const { return roller_mass_[j]; }
   double roller_inertia(int j) const { return roller_inertia_[j]; }
   double cage_mass() const { return cage_mass_; }
@@ -156,7 +158,7 @@ class HybridRollers : public solver::ForceContributor {
     double delta;   // penetration (> 0: in contact)
   };
   // Candidate points of roller j against the outer (which = 0) or inner (1) race.
-  int RacePoints(int j, int which, Point out[2]) const;
+  int RacePoints(int j, int which, const RollerProfile& profile, Point out[2]) const;
   // Kernel weights of the raceway nodes around angle th: indices into ring_nodes_ and weights.
   int Kernel(double th, int* idx, double* w) const;
   // Deformed raceway radius at angle th (reference raceway radius + kernel-averaged radial
@@ -167,6 +169,7 @@ class HybridRollers : public solver::ForceContributor {
   HybridOptions options_;
   solver::TimeFunction angle_, speed_, load_;
   std::vector<RollerProfile> profiles_;
+  std::vector<double> spall_fraction_;
   std::vector<double> roller_mass_, roller_inertia_, centroid_x_, centroid_y_;  // body frame
   std::vector<double> pocket_angle_;  // pocket j centre line in the cage frame
   double cage_mass_ = 0, cage_inertia_ = 0, shaft_mass_ = 0;

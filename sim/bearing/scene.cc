@@ -424,6 +424,9 @@ Scene ParseScene(const std::string& toml_text,
       d.depth_m = s.Number("depth_mm", 0.59, kPositive) * kMm;
       d.angle_rad = s.Number("angle_deg", 0.0, {-360.0, 360.0}) * kPi / 180.0;
       d.edge_radius_m = s.Number("edge_radius_mm", 0.0, {0.0, 1.0}) * kMm;
+      const double t_mm = scene.geometry.thickness_m / kMm;
+      d.length_m = s.Number("length_mm", t_mm, {0.0, t_mm}) * kMm;
+      if (!(d.length_m > 0)) s.Fail("length_mm", "must be > 0 (the spall's axial length)");
       s.RejectUnknown();
       if (!(d.width_m < roller_d))
         s.Fail("width_mm",
@@ -472,6 +475,13 @@ Scene ParseScene(const std::string& toml_text,
     scene.model.adapter = s.String("adapter", "elastic");
     if (scene.model.adapter != "elastic" && scene.model.adapter != "rigid")
       s.Fail("adapter", "expected \"elastic\" or \"rigid\", got \"" + scene.model.adapter + "\"");
+    // The FE section is 2-D: a spall runs through its whole thickness.
+    for (std::size_t i = 0; scene.model.fidelity == "fe" && i < scene.defects.size(); ++i)
+      if (scene.defects[i].length_m < scene.geometry.thickness_m * (1 - 1e-12))
+        s.Fail("fidelity",
+               "defects." + std::to_string(i) +
+                   ".length_mm is shorter than bearing.thickness_mm (a partial-length spall); "
+                   "that needs model.fidelity = \"hybrid\"");
     s.RejectUnknown();
   }
   {

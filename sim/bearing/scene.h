@@ -38,6 +38,10 @@ struct Defect {
   // Fillet radius of the spall's two rim edges (hybrid model; 0 = sharp, the FE mesher's edges
   // are sharp to the element size).
   double edge_radius_m = 0.0;
+  // Axial length of the spall (hybrid model). Scene default: the section thickness, i.e. a
+  // through-length spall as in the paper's 2-D model; shorter spalls leave an intact part of the
+  // roller in contact (the hybrid model carries the two parts side by side).
+  double length_m = 0.0;
 };
 
 // Bearing section geometry. Raceway diameters are NOMINAL (zero clearance); the mesher opens

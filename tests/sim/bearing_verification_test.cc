@@ -224,6 +224,43 @@ TEST(HybridVerificationTest, SteelRingOnRigidAdapterLoadZone) {
   EXPECT_NEAR(-shaft_y, hj.delta_r_m, 0.10 * hj.delta_r_m);
 }
 
+// A spall over half the roller's length (defects.N.length_mm = 4.5 of 9): the notched half and
+// the intact half share the rigid roller, each with half the Palmgren stiffness, and the mass
+// properties are the length-weighted mixture. At the paper's friction (mu 0.01 / 0.005), where
+// a through-length spall traps the rigid roller (docs/BEARING_MODEL.md, "Spall trapping"), the
+// intact half keeps it rolling: spin within 3 % of the healthy rollers' (6000 rpm, 40 ms).
+TEST(HybridVerificationTest, HalfLengthSpallKeepsRollingAtThePapersFriction) {
+  BearingModel model(LoadScene(SceneFile(),
+                               {"model.fidelity=hybrid",
+                                "mesh.size_mm=2.0",
+                                "operation.speed_rpm=6000",
+                                "operation.ramp_s=0.002",
+                                "defects.0.length_mm=4.5"}));
+  const HybridRollers& h = *model.hybrid_rollers();
+  ASSERT_DOUBLE_EQ(h.spall_length_fraction(0), 0.5);
+  // Mass properties: half healthy section, half notched section.
+  const RollerProfile& p = h.profile(0);
+  const RollerProfile::Properties sp = p.SectionProperties();
+  const double a_c = kPi * p.radius * p.radius;
+  const double mass_per_area = h.roller_mass(1) / a_c;  // healthy roller: rho t
+  EXPECT_NEAR(h.roller_mass(0), mass_per_area * 0.5 * (sp.area + a_c), 1e-12);
+  EXPECT_LT(h.roller_mass(0), h.roller_mass(1));
+  solver::ExplicitSolver& s = model.solver();
+  s.Run(0.01);
+  double spin_defective = 0, spin_healthy = 0;
+  int n = 0;
+  while (s.time() < 0.04) {
+    s.Step();
+    spin_defective += h.roller(0).omega, spin_healthy += h.roller(1).omega, ++n;
+  }
+  spin_defective /= n, spin_healthy /= n;
+  std::printf("mean spin 10-40 ms: half-length spalled roller %.1f rad/s, healthy %.1f rad/s\n",
+              spin_defective,
+              spin_healthy);
+  EXPECT_LT(spin_healthy, -1400.0);  // rolling: -1545 rad/s at 6000 rpm
+  EXPECT_NEAR(spin_defective / spin_healthy, 1.0, 0.03);
+}
+
 // Energy balance with a spall at the paper's friction (mu 0.01 / 0.005), 1200 rpm: the spalled
 // roller is unloaded at the load line, so its neighbours carry 5.9 kN and dent the raceway; the
 // rollers then roll over the sloped (kernel-averaged) raceway. The outer-race force must follow

@@ -158,6 +158,23 @@ TEST(Scene, BadScenesGiveOneLineErrorsNamingFileLineAndKey) {
   ExpectOneLineError(ErrorOf("[mesh]\nsize_mm = 2.0\n"), "mesh.contact_size_mm: too coarse");
 }
 
+TEST(Scene, SpallLengthDefaultsToThroughLengthAndPartialNeedsTheHybridModel) {
+  const Scene s = ParseScene("[bearing]\nthickness_mm = 12.0\n[[defects]]\nroller = 1\n", "a.toml");
+  ASSERT_EQ(s.defects.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.defects[0].length_m, 12e-3);  // through-length, the paper's 2-D case
+  const Scene h = ParseScene(
+      "[model]\nfidelity = \"hybrid\"\n[[defects]]\nroller = 1\nlength_mm = 4.5\n", "h.toml");
+  EXPECT_DOUBLE_EQ(h.defects[0].length_m, 4.5e-3);
+  ExpectOneLineError(ErrorOf("[[defects]]\nroller = 1\nlength_mm = 4.5\n"),
+                     "model.fidelity: defects.0.length_mm is shorter than bearing.thickness_mm");
+  ExpectOneLineError(
+      ErrorOf("[model]\nfidelity = \"hybrid\"\n[[defects]]\nroller = 1\nlength_mm = 9.5\n"),
+      "bad.toml:5: defects.0.length_mm: must be in [0, 9]");
+  ExpectOneLineError(
+      ErrorOf("[model]\nfidelity = \"hybrid\"\n[[defects]]\nroller = 1\nlength_mm = 0\n"),
+      "defects.0.length_mm: must be > 0");
+}
+
 TEST(Scene, MissingFileIsInputError) {
   EXPECT_THROW(LoadScene("/nonexistent/scene.toml"), InputError);
 }
