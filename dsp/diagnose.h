@@ -115,7 +115,8 @@ Diagnosis Diagnose(const Record& record,
 
 // Speed estimate from the raw spectrum: shaft harmonics 1..5 searched as a comb within
 // +/- search of nominal_hz. Returns the measured shaft frequency when the comb is significant
-// (p <= 1e-3 and >= 2 harmonics), else nullopt.
+// (p <= 1e-3 and >= 2 harmonics) and its 1x or 2x line is among the significant ones, else
+// nullopt.
 std::optional<double> EstimateShaftSpeed(const EnvelopeAnalyzer& analyzer,
                                          double nominal_hz,
                                          double search);

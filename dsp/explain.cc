@@ -211,16 +211,50 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
 
   // Is the roller comb only a dense cage comb? (see the header)
   out.roller_integer_ratio_mismatch = std::numeric_limits<double>::quiet_NaN();
+  // The cage rate for the integer test: the least-squares rate through the sub-bin peak
+  // positions of a detected cage comb's significant harmonics, sum m f_m / sum m^2. Its error
+  // is the peak error over the highest order (~0.1 % at 0.5-1 Hz bins), whereas the half-distance
+  // of the roller comb's sideband pairs and the comb search's speed grid scatter by 0.5-1 %, as
+  // much as the test's tolerance (N205EM: f_b / f_c = 13.85, 1.1 % from 14). (Not RefineRate:
+  // followed up to high orders, the cage series locks onto a roller forest's lines, 14 f_c onto
+  // f_b, and makes any roller comb an integer multiple.)
+  // Only cage orders below the roller forest's lowest line, BSF - (sideband_orders + 1/2) f_c
+  // (N205EM: 4.4 f_c, 6205: 3.4 f_c), count: above it a forest line (k - 1/2) f_b +/- m f_c sits
+  // within 0.1 f_c of a cage order and the comb search may take it for the cage harmonic.
+  double forest_floor_hz = std::numeric_limits<double>::infinity();
+  for (const FaultFamily& f : families)
+    if (f.component == FaultComponent::kRollingElement && cage_hz > 0.0)
+      forest_floor_hz = 0.5 * f.fundamental_hz - (explanation.sideband_orders + 0.5) * cage_hz;
+  double cage_measured_hz = 0.0;
+  for (size_t i = 0; i < families.size(); ++i) {
+    if (families[i].component != FaultComponent::kCage || !detections[i].detected) continue;
+    double num = 0.0, den = 0.0;
+    int used = 0;
+    for (const LineEvidence& e : detections[i].lines)
+      if (e.significant && !e.excluded && e.line.sideband == 0 && e.line.harmonic > 0 &&
+          e.line.harmonic * cage_hz < forest_floor_hz)
+        num += e.line.harmonic * e.freq_hz, den += double(e.line.harmonic) * e.line.harmonic,
+            ++used;
+    if (used >= 2) cage_measured_hz = num / den;
+  }
   for (size_t i = 0; i < families.size(); ++i) {
     if (families[i].component != FaultComponent::kRollingElement || !detections[i].detected)
       continue;
     const FamilyRates r = MeasureRates(detections[i], families[i], cage_hz, shaft_hz);
-    if (!r.sideband_measured || !(r.sideband_hz > 0.0)) continue;
-    const double ratio = r.fundamental_hz / r.sideband_hz;
+    const double fsb = cage_measured_hz > 0.0 ? cage_measured_hz
+                       : r.sideband_measured  ? r.sideband_hz
+                                              : 0.0;
+    if (!(fsb > 0.0)) continue;
+    const double ratio = r.fundamental_hz / fsb;
     const double n = std::max(1.0, std::round(ratio));
     out.roller_integer_ratio_mismatch = ratio / n - 1.0;
+    // A cage comb sits ON the integer; a roller comb near the bearing's own f_b / f_c (slip moves
+    // both rates together). Call it a cage comb only when the integer is also the nearer one.
+    const double kinematic_ratio = cage_hz > 0.0 ? families[i].fundamental_hz / cage_hz
+                                                 : std::numeric_limits<double>::infinity();
     out.roller_is_cage_comb =
-        std::abs(out.roller_integer_ratio_mismatch) <= explanation.integer_ratio_tolerance;
+        std::abs(out.roller_integer_ratio_mismatch) <= explanation.integer_ratio_tolerance &&
+        std::abs(ratio - n) < std::abs(ratio - kinematic_ratio);
   }
 
   auto explains_first = [&](const FamilyDetection& a, const FamilyDetection& b) {

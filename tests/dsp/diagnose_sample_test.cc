@@ -53,13 +53,19 @@ TEST(SampleRecord, RollerSpallIsRollingElementWithMeasuredRates) {
 
 enum class Kind { kRoller, kCage, kOuter };
 
-// 2 s at 20 kHz, a 5.4 kHz resonance, shaft and mains distractors; 1 % slip on every rate.
-Record Synthetic(
-    const char* bearing, double rpm, Kind kind, unsigned seed, double* rate_hz, double* cage_hz) {
+// 2 s (or `duration_s`) at 20 kHz, a 5.4 kHz resonance, shaft and mains distractors; 1 % slip
+// on every rate.
+Record Synthetic(const char* bearing,
+                 double rpm,
+                 Kind kind,
+                 unsigned seed,
+                 double* rate_hz,
+                 double* cage_hz,
+                 double duration_s = 2.0) {
   const BearingFrequencies f = ComputeFrequencies(CatalogBearing(bearing), rpm / 60.0);
   FaultSignalSpec s;
   s.fs_hz = 20000;
-  s.duration_s = 2.0;
+  s.duration_s = duration_s;
   s.shaft_hz = f.shaft_hz;
   s.shaft_amplitude = 0.5;
   s.mains_amplitude = 0.2;
@@ -93,12 +99,16 @@ struct Case {
   const char* bearing;
   double rpm;
   Kind kind;
+  // 1 s records (1 Hz bins, the main job's simulated record) are the hard case for telling a
+  // roller forest from a cage comb: N205EM's f_b / f_c = 13.85 is 1.1 % from 14, and the rates
+  // measured from a few lines scatter by up to 1 %.
+  double duration_s = 2.0;
 };
 
 std::string Name(const Case& c) {
   const char* kinds[] = {"roller", "cage", "outer"};
   return std::string(c.bearing) + " " + std::to_string(static_cast<int>(c.rpm)) + " rpm " +
-         kinds[static_cast<int>(c.kind)];
+         kinds[static_cast<int>(c.kind)] + " " + std::to_string(c.duration_s) + " s";
 }
 
 class JointExplanationCases : public ::testing::TestWithParam<Case> {};
@@ -107,7 +117,7 @@ TEST_P(JointExplanationCases, VerdictAndRates) {
   const Case c = GetParam();
   for (unsigned seed : {1u, 2u}) {
     double rate = 0.0, cage = 0.0;
-    const Record r = Synthetic(c.bearing, c.rpm, c.kind, seed, &rate, &cage);
+    const Record r = Synthetic(c.bearing, c.rpm, c.kind, seed, &rate, &cage, c.duration_s);
     const Diagnosis d = Diagnose(r, CatalogBearing(c.bearing), c.rpm / 60.0);
     SCOPED_TRACE(Name(c) + ", seed " + std::to_string(seed) + "\n" + d.BriefReport());
     switch (c.kind) {
@@ -116,7 +126,8 @@ TEST_P(JointExplanationCases, VerdictAndRates) {
         ASSERT_TRUE(d.measured_f_b_hz.has_value());
         EXPECT_NEAR(*d.measured_f_b_hz / rate, 1.0, 3e-3);
         ASSERT_TRUE(d.measured_f_c_hz.has_value());
-        EXPECT_NEAR(*d.measured_f_c_hz / cage, 1.0, 0.02);
+        // f_c from the +/- f_c sideband pairs: its error scales with the bin width 1 / T.
+        EXPECT_NEAR(*d.measured_f_c_hz / cage, 1.0, 0.02 * 2.0 / c.duration_s);
         EXPECT_FALSE(Find(d, FaultComponent::kCage).detected);
         EXPECT_FALSE(Find(d, FaultComponent::kOuterRace).detected);
         break;
@@ -151,7 +162,13 @@ INSTANTIATE_TEST_SUITE_P(Bearings,
                                            Case{"6203", 1750, Kind::kCage},
                                            Case{"N205EM", 1200, Kind::kOuter},
                                            Case{"6205", 1797, Kind::kOuter},
-                                           Case{"6203", 1750, Kind::kOuter}));
+                                           Case{"6203", 1750, Kind::kOuter},
+                                           Case{"N205EM", 1200, Kind::kRoller, 1.0},
+                                           Case{"N205EM", 1800, Kind::kRoller, 1.0},
+                                           Case{"6205", 1797, Kind::kRoller, 1.0},
+                                           Case{"N205EM", 1200, Kind::kCage, 1.0},
+                                           Case{"N205EM", 1800, Kind::kCage, 1.0},
+                                           Case{"6205", 1797, Kind::kCage, 1.0}));
 
 // Noise only on the N205EM: the re-tests after explaining away keep the false-alarm control (no
 // family is detected first, so nothing is re-tested; with shaft and mains lines likewise).
