@@ -298,9 +298,12 @@ TEST(SimulateTest, HybridResumedRunIsBitIdenticalToAnUninterruptedOne) {
   // The hybrid model's rigid bodies, friction springs and energies travel in the checkpoint
   // (HybridRollers::SaveState): a run stopped after the spall's first contacts and resumed
   // must write exactly the datasets of the uninterrupted run. 6000 rpm with the spall so that
-  // every state variable (friction springs, cage contacts) is live.
+  // every state variable (friction springs, cage contacts) is live; a second, half-length spall
+  // on roller 1 brings the intact part's friction springs in.
   const Scene scene = LoadScene(Scenes() + "paper-verification.toml",
                                 {"model.fidelity=hybrid",
+                                 "defects.1.roller=1",
+                                 "defects.1.length_mm=4.5",
                                  "mesh.size_mm=2.0",
                                  "operation.speed_rpm=6000",
                                  "operation.ramp_s=0.001",
