@@ -230,7 +230,7 @@ HybridRollers::HybridRollers(const Scene& scene,
     cage_mass_ = scene_.materials.cage.density_kg_m3 * t * area;
     cage_inertia_ = scene_.materials.cage.density_kg_m3 * t * polar;
   }
-  shaft_mass_ = scene_.materials.inner_ring.density_kg_m3 * t * kPi *
+  shaft_mass_ = scene_.materials.inner_ring.density_kg_m3 * g.ring_width_m * kPi *
                 (inner_radius_ * inner_radius_ -
                  0.25 * g.inner_ring_bore_diameter_m * g.inner_ring_bore_diameter_m);
 

@@ -74,7 +74,10 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
     fe::Section s;
     s.material = {mat.youngs_modulus_pa, mat.poisson_ratio, mat.density_kg_m3};
     s.mode = fe::PlaneMode::kPlaneStrain;
-    s.thickness = t;
+    // Rings and adapter: their axial width (bending stiffness, mass); rollers and cage: the
+    // roller's effective length, the section every contact force is for.
+    const bool ring = part == "outer_ring" || part == "inner_ring" || part == "adapter";
+    s.thickness = ring ? scene_.geometry.ring_width_m : t;
     sections.push_back(s);
     bulk.push_back(contact::BulkModulus(mat.youngs_modulus_pa, mat.poisson_ratio));
   }

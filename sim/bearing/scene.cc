@@ -220,6 +220,11 @@ void ReadGeometry(Section s, SceneGeometry* g) {
       b.outer_raceway_diameter_m != cat.outer_raceway_diameter_m)
     b.name = cat.name + " (modified)";
   g->thickness_m = s.Number("thickness_mm", 9.0, kPositive) * kMm;
+  g->ring_width_m = s.Number("ring_width_mm", 15.0, kPositive) * kMm;
+  if (!(g->ring_width_m >= g->thickness_m))
+    s.Fail("ring_width_mm",
+           "must be >= thickness_mm (" + Fmt(g->thickness_m / kMm) +
+               " mm): the rings are at least as wide as the rollers' contact");
   g->diametral_clearance_m = s.Number("diametral_clearance_mm", 0.02, {0.0, 1.0}) * kMm;
   g->pocket_clearance_m = s.Number("pocket_clearance_mm", 0.2, {0.0, 5.0}) * kMm;
   g->outer_ring_outer_diameter_m = s.Number("outer_ring_outer_diameter_mm", 52.0, kPositive) * kMm;

@@ -48,8 +48,12 @@ struct Defect {
 // the diametral clearance P_d by moving each raceway by P_d/4, so a centred roller has a gap of
 // P_d/4 on each side and P_d/2 in total (Harris's convention, see quasistatic/harris_jones.h).
 struct SceneGeometry {
-  BearingGeometry bearing;               // Z, roller diameter, pitch and raceway diameters
-  double thickness_m = 9e-3;             // 2-D section thickness = effective roller length
+  BearingGeometry bearing;    // Z, roller diameter, pitch and raceway diameters
+  double thickness_m = 9e-3;  // 2-D section thickness = effective roller length
+  // Axial width of the rings (and the adapter under them): the section thickness of the ring and
+  // adapter elements, i.e. their bending stiffness and mass. Contacts, rollers and cage use
+  // thickness_m. N205EM: 15 mm (ISO dimension series 02).
+  double ring_width_m = 15e-3;
   double diametral_clearance_m = 20e-6;  // P_d
   double pocket_clearance_m = 0.2e-3;    // pocket width - roller diameter (total)
   double outer_ring_outer_diameter_m = 52e-3;

@@ -166,9 +166,10 @@ TEST(HybridVerificationTest, StiffHousingReproducesHarrisJones) {
 }
 
 TEST(HybridVerificationTest, SteelHousingLoadZone) {
-  // The real steel outer ring, tied to its adapter (seat +-50 deg): the rollers on and next to
-  // the load line carry close to Harris-Jones, the one at 55 deg (beyond the seat, where the
-  // ring bends outward) less; the load balances the 10 kN.
+  // The real steel outer ring (15 mm wide), tied to its steel adapter (seat +-50 deg): the rollers
+  // on and next to the load line carry close to Harris-Jones (measured +8.7 / +4.6 %: the
+  // adapter's compliance under the load line concentrates the load), the one at 55 deg (beyond
+  // the seat, where the ring bends outward) much less (-42 %); the load balances the 10 kN.
   double shaft_y = 0;
   const std::vector<double> q = StaticOuterForces({"mesh.size_mm=1.0"}, &shaft_y);
   const LoadDistributionSummary hj = HarrisJones();
@@ -187,17 +188,17 @@ TEST(HybridVerificationTest, SteelHousingLoadZone) {
   std::printf(
       "shaft sinks %.2f um (Harris-Jones delta_r %.2f um)\n", -shaft_y * 1e6, hj.delta_r_m * 1e6);
   EXPECT_NEAR(fy, 10000.0, 50.0);
-  for (int j : {1, 12}) EXPECT_NEAR(q[j], hj.rollers[j].outer_load_n, 0.10 * 2899) << j;
-  EXPECT_NEAR(q[0], hj.rollers[0].outer_load_n, 0.15 * 3563);  // measured +11.5 %, see docs
+  for (int j : {0, 1, 12})
+    EXPECT_NEAR(q[j], hj.rollers[j].outer_load_n, 0.10 * hj.rollers[j].outer_load_n) << j;
 }
 
 TEST(HybridVerificationTest, SteelRingOnRigidAdapterLoadZone) {
-  // The steel outer ring held rigidly over the adapter seat (model.adapter = "rigid"; Table 1
-  // gives the adapter no material). Measured at 1.0 / 0.5 mm: +1.5 / +1.3 % on the load line,
-  // +2.7 / +3.0 % at +-27.7 deg: within 10 % of Harris-Jones; the rollers at +-55.4 deg, 5 deg
+  // The steel outer ring (15 mm wide) held rigidly over the adapter seat (model.adapter =
+  // "rigid"; Table 1 gives the adapter no material). Measured at 2.0 / 1.0 / 0.5 mm: +1.2 / +1.0 /
+  // +0.9 % on the load line, +2.0 / +1.8 / +2.0 % at +-27.7 deg; the rollers at +-55.4 deg, 5 deg
   // beyond the seat edge (+-50.3 deg: a 40 mm block under a 52 mm ring) where the ring is not
-  // supported and bends outward, carry 15 % less (-1.3 % with the ring rigid too, see
-  // StiffHousingReproducesHarrisJones; docs/BEARING_MODEL.md).
+  // supported and bends outward, -11.1 / -9.7 / -10.2 % (-1.3 % with the ring rigid too, see
+  // StiffHousingReproducesHarrisJones; with a 9 mm ring -14.7 %; docs/BEARING_MODEL.md).
   double shaft_y = 0;
   const std::vector<double> q =
       StaticOuterForces({"mesh.size_mm=1.0", "model.adapter=rigid"}, &shaft_y);
@@ -220,7 +221,7 @@ TEST(HybridVerificationTest, SteelRingOnRigidAdapterLoadZone) {
   for (int j : {0, 1, 12})
     EXPECT_NEAR(q[j], hj.rollers[j].outer_load_n, 0.10 * hj.rollers[j].outer_load_n) << j;
   for (int j : {2, 11})
-    EXPECT_NEAR(q[j], hj.rollers[j].outer_load_n, 0.20 * hj.rollers[j].outer_load_n) << j;
+    EXPECT_NEAR(q[j], hj.rollers[j].outer_load_n, 0.12 * hj.rollers[j].outer_load_n) << j;
   EXPECT_NEAR(-shaft_y, hj.delta_r_m, 0.10 * hj.delta_r_m);
 }
 

@@ -158,6 +158,14 @@ TEST(Scene, BadScenesGiveOneLineErrorsNamingFileLineAndKey) {
   ExpectOneLineError(ErrorOf("[mesh]\nsize_mm = 2.0\n"), "mesh.contact_size_mm: too coarse");
 }
 
+TEST(Scene, RingWidthDefaultsToTheN205EMsAndMayNotBeNarrowerThanTheRollers) {
+  const Scene s = ParseScene("", "a.toml");
+  EXPECT_DOUBLE_EQ(s.geometry.ring_width_m, 15e-3);
+  EXPECT_DOUBLE_EQ(s.geometry.thickness_m, 9e-3);
+  ExpectOneLineError(ErrorOf("[bearing]\nring_width_mm = 8.0\n"),
+                     "bad.toml:2: bearing.ring_width_mm: must be >= thickness_mm (9 mm)");
+}
+
 TEST(Scene, SpallLengthDefaultsToThroughLengthAndPartialNeedsTheHybridModel) {
   const Scene s = ParseScene("[bearing]\nthickness_mm = 12.0\n[[defects]]\nroller = 1\n", "a.toml");
   ASSERT_EQ(s.defects.size(), 1u);
