@@ -282,6 +282,8 @@ double ContactPair::StableTimeStep(const fe::NodalState& state) const {
     const double dt_ref = initialised_ ? reference_dt_ : options_.reference_time_step;
     if (!(dt_ref > 0.0)) return kInf;  // adapts to the first step it is given
     omega2 = 2.0 * options_.penalty_scale / (dt_ref * dt_ref);
+  } else if (min_inverse_mass_state_ == &state) {
+    omega2 = cached_omega2_;
   } else {
     for (size_t ip = 0; ip < passes_.size(); ++ip) {
       const Pass& p = passes_[ip];
@@ -297,6 +299,9 @@ double ContactPair::StableTimeStep(const fe::NodalState& state) const {
       const double inv = InverseMass(min_mass(p.slave)) + InverseMass(min_mass(p.master));
       omega2 = std::max(omega2, k_max * inv);
     }
+    // Lumped masses and the penalty are fixed for a run: scan the surfaces once per state
+    // (the scan was ~2.4 % of a full-FE step at 0.25 mm).
+    if (omega2 > 0.0) min_inverse_mass_state_ = &state, cached_omega2_ = omega2;
   }
   // A node that is slave in one pass and master in the other carries both springs.
   if (passes_.size() > 1) omega2 *= 2.0;

@@ -143,6 +143,10 @@ class ContactPair : public solver::ForceContributor {
   int num_rebuilds_ = 0;
   bool initialised_ = false;
   std::vector<double> max_penalty_;  // per pass: largest bulk-modulus penalty of its master
+  // StableTimeStep's spring/mass bound for the nodal state it last scanned (masses are constant
+  // during a run).
+  mutable const fe::NodalState* min_inverse_mass_state_ = nullptr;
+  mutable double cached_omega2_ = 0.0;
 };
 
 // Convenience for model builders and `spall bench fe`: a pair between two curves of a mesh,
