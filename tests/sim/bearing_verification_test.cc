@@ -137,6 +137,27 @@ LoadDistributionSummary HarrisJones() {
   return hj;
 }
 
+// Prints each roller's outer-race force against Harris-Jones and the shaft's sink; returns the
+// vertical resultant of the forces (which must balance the radial load).
+double PrintAgainstHarrisJones(const std::vector<double>& q,
+                               const LoadDistributionSummary& hj,
+                               double shaft_y) {
+  double fy = 0;
+  for (size_t j = 0; j < q.size(); ++j) {
+    const double ref = hj.rollers[j].outer_load_n;
+    fy += q[j] * std::cos(hj.rollers[j].angle_rad);
+    std::printf("roller %2zu psi %7.2f deg: %8.1f N (Harris-Jones %8.1f N, %+5.1f %%)\n",
+                j,
+                hj.rollers[j].angle_rad * 180 / kPi,
+                q[j],
+                ref,
+                ref > 0 ? 100 * (q[j] / ref - 1) : 0.0);
+  }
+  std::printf(
+      "shaft sinks %.2f um (Harris-Jones delta_r %.2f um)\n", -shaft_y * 1e6, hj.delta_r_m * 1e6);
+  return fy;
+}
+
 TEST(HybridVerificationTest, StiffHousingReproducesHarrisJones) {
   // Housing 100x stiffer: the model's only compliance is then the Palmgren contacts, as in
   // Harris-Jones; load zone rollers (psi = 0, +-27.7, +-55.4 deg) within 2 %, approach within 3 %.
@@ -173,20 +194,7 @@ TEST(HybridVerificationTest, SteelHousingLoadZone) {
   double shaft_y = 0;
   const std::vector<double> q = StaticOuterForces({"mesh.size_mm=1.0"}, &shaft_y);
   const LoadDistributionSummary hj = HarrisJones();
-  const int z = static_cast<int>(q.size());
-  double fy = 0;
-  for (int j = 0; j < z; ++j) {
-    const double ref = hj.rollers[j].outer_load_n;
-    fy += q[j] * std::cos(hj.rollers[j].angle_rad);
-    std::printf("roller %2d psi %7.2f deg: %8.1f N (Harris-Jones %8.1f N, %+5.1f %%)\n",
-                j,
-                hj.rollers[j].angle_rad * 180 / kPi,
-                q[j],
-                ref,
-                ref > 0 ? 100 * (q[j] / ref - 1) : 0.0);
-  }
-  std::printf(
-      "shaft sinks %.2f um (Harris-Jones delta_r %.2f um)\n", -shaft_y * 1e6, hj.delta_r_m * 1e6);
+  const double fy = PrintAgainstHarrisJones(q, hj, shaft_y);
   EXPECT_NEAR(fy, 10000.0, 50.0);
   for (int j : {0, 1, 12})
     EXPECT_NEAR(q[j], hj.rollers[j].outer_load_n, 0.10 * hj.rollers[j].outer_load_n) << j;
@@ -203,20 +211,7 @@ TEST(HybridVerificationTest, SteelRingOnRigidAdapterLoadZone) {
   const std::vector<double> q =
       StaticOuterForces({"mesh.size_mm=1.0", "model.adapter=rigid"}, &shaft_y);
   const LoadDistributionSummary hj = HarrisJones();
-  const int z = static_cast<int>(q.size());
-  double fy = 0;
-  for (int j = 0; j < z; ++j) {
-    const double ref = hj.rollers[j].outer_load_n;
-    fy += q[j] * std::cos(hj.rollers[j].angle_rad);
-    std::printf("roller %2d psi %7.2f deg: %8.1f N (Harris-Jones %8.1f N, %+5.1f %%)\n",
-                j,
-                hj.rollers[j].angle_rad * 180 / kPi,
-                q[j],
-                ref,
-                ref > 0 ? 100 * (q[j] / ref - 1) : 0.0);
-  }
-  std::printf(
-      "shaft sinks %.2f um (Harris-Jones delta_r %.2f um)\n", -shaft_y * 1e6, hj.delta_r_m * 1e6);
+  const double fy = PrintAgainstHarrisJones(q, hj, shaft_y);
   EXPECT_NEAR(fy, 10000.0, 50.0);
   for (int j : {0, 1, 12})
     EXPECT_NEAR(q[j], hj.rollers[j].outer_load_n, 0.10 * hj.rollers[j].outer_load_n) << j;
