@@ -171,15 +171,27 @@ void HertzDiscBetweenFlats(std::vector<CaseResult>* results) {
   const double secs = Seconds(start);
   const std::string note =
       Note("disc R 10 mm, 3520 quads, rim 160 nodes refined 5x at the contacts, f = 5", secs);
-  Add(results, "hertz_flats_half_width", "contact half-width b (m)", b_ref, b, 0.05, note);
   Add(results,
-      "hertz_flats_approach",
+      "hertz: disc between flats, half-width",
+      "contact half-width b (m)",
+      b_ref,
+      b,
+      0.05,
+      note);
+  Add(results,
+      "hertz: disc between flats, approach",
       "diameter change at load P (m)",
       delta_ref,
       delta,
       0.05,
       note);
-  Add(results, "hertz_flats_load", "contact force per length P (N/m)", P, p_computed, 0.01, note);
+  Add(results,
+      "hertz: disc between flats, load",
+      "contact force per length P (N/m)",
+      P,
+      p_computed,
+      0.01,
+      note);
 }
 
 // A steel disc (R1 = 10 mm) pressed by a force P per unit length at its centre into the bore
@@ -236,7 +248,7 @@ void HertzDiscInBore(std::vector<CaseResult>* results) {
   const std::string note =
       Note("disc R1 10 mm in bore R2 12 mm, 5920 quads, refined 5x at the contact, f = 5",
            Seconds(start));
-  Add(results, "hertz_bore_half_width", "contact half-width b (m)", b_ref, b, 0.05, note);
+  Add(results, "hertz: disc in bore, half-width", "contact half-width b (m)", b_ref, b, 0.05, note);
 }
 
 // An elastic block (4 x 2 mm) on a fixed base, pressed by N through a rigid top plate and pulled
@@ -302,7 +314,7 @@ void FrictionBlock(std::vector<CaseResult>* results) {
                std::to_string(speed_end) + " m/s",
            Seconds(start));
   Add(results,
-      "friction_stick",
+      "friction: block sticks below mu_s N",
       "plate drift over 15 us at T = 0.9 mu_s N (m)",
       0.0,
       hold_drift,
@@ -310,14 +322,14 @@ void FrictionBlock(std::vector<CaseResult>* results) {
       note,
       true);
   Add(results,
-      "friction_static_peak",
+      "friction: static peak",
       "largest friction force (N)",
       mu_s * N,
       max_friction,
       0.05,
       note);
   Add(results,
-      "friction_sliding",
+      "friction: sliding force",
       "friction force while sliding / mu_d N_contact",
       mu_d * normal,
       sliding,
@@ -383,7 +395,7 @@ void ElasticImpact(std::vector<CaseResult>* results, bool discs) {
   const std::string note = Note(os.str(), Seconds(start));
   if (peak_internal < 0.1 * e0) {  // no impact: the check would be vacuous
     Add(results,
-        discs ? "energy_disc_impact_balance" : "energy_block_impact_hourglass",
+        discs ? "impact: two discs, energy balance" : "impact: two blocks, hourglass share",
         "peak internal energy / E0 (impact happened)",
         0.5,
         peak_internal / e0,
@@ -394,7 +406,7 @@ void ElasticImpact(std::vector<CaseResult>* results, bool discs) {
   }
   if (discs) {
     Add(results,
-        "energy_disc_impact_balance",
+        "impact: two discs, energy balance",
         "max |E_total - E0| / E0",
         0.0,
         max_drift / e0,
@@ -403,7 +415,7 @@ void ElasticImpact(std::vector<CaseResult>* results, bool discs) {
         true);
   } else {
     Add(results,
-        "energy_block_impact_hourglass",
+        "impact: two blocks, hourglass share",
         "hourglass / internal energy at peak internal",
         0.0,
         hourglass_at_peak / peak_internal,
@@ -424,12 +436,15 @@ void AppendContactCases(std::vector<CaseResult>* results, const std::string& fil
     void (*run)(std::vector<CaseResult>*);
   };
   const Case cases[] = {
-      {{"hertz_flats_half_width", "hertz_flats_approach", "hertz_flats_load"},
+      {{"hertz: disc between flats, half-width",
+        "hertz: disc between flats, approach",
+        "hertz: disc between flats, load"},
        HertzDiscBetweenFlats},
-      {{"hertz_bore_half_width"}, HertzDiscInBore},
-      {{"friction_stick", "friction_static_peak", "friction_sliding"}, FrictionBlock},
-      {{"energy_disc_impact_balance"}, DiscImpact},
-      {{"energy_block_impact_hourglass"}, BlockImpact},
+      {{"hertz: disc in bore, half-width"}, HertzDiscInBore},
+      {{"friction: block sticks below mu_s N", "friction: static peak", "friction: sliding force"},
+       FrictionBlock},
+      {{"impact: two discs, energy balance"}, DiscImpact},
+      {{"impact: two blocks, hourglass share"}, BlockImpact},
   };
   for (const Case& c : cases) {
     if (std::none_of(c.names.begin(), c.names.end(), [&](const std::string& n) {

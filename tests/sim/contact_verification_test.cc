@@ -26,12 +26,14 @@ void ExpectAllPass(const std::string& filter, size_t expected) {
   }
 }
 
-TEST(ContactVerification, HertzDiscBetweenRigidFlats) { ExpectAllPass("hertz_flats", 3); }
-TEST(ContactVerification, HertzDiscInBore) { ExpectAllPass("hertz_bore", 1); }
-TEST(ContactVerification, FrictionBlockSticksThenSlides) { ExpectAllPass("friction", 3); }
-TEST(ContactVerification, DiscImpactConservesEnergy) { ExpectAllPass("energy_disc_impact", 1); }
+TEST(ContactVerification, HertzDiscBetweenRigidFlats) {
+  ExpectAllPass("hertz: disc between flats", 3);
+}
+TEST(ContactVerification, HertzDiscInBore) { ExpectAllPass("hertz: disc in bore", 1); }
+TEST(ContactVerification, FrictionBlockSticksThenSlides) { ExpectAllPass("friction:", 3); }
+TEST(ContactVerification, DiscImpactConservesEnergy) { ExpectAllPass("impact: two discs", 1); }
 TEST(ContactVerification, BlockImpactKeepsHourglassEnergySmall) {
-  ExpectAllPass("energy_block_impact", 1);
+  ExpectAllPass("impact: two blocks", 1);
 }
 
 }  // namespace
