@@ -198,6 +198,8 @@ HybridRollers::HybridRollers(const Scene& scene,
         f * (sp.polar + sp.area * ((sp.cx - cx) * (sp.cx - cx) + (sp.cy - cy) * (sp.cy - cy))) +
         (1 - f) * (polar_c + a_c * (cx * cx + cy * cy));
     profiles_.push_back(p);
+    intact_profiles_.push_back(p);
+    intact_profiles_.back().spalled = false;
     spall_fraction_.push_back(p.spalled ? f : 1.0);
     roller_mass_.push_back(rho_r * t * area);
     roller_inertia_.push_back(rho_r * t * polar);
@@ -316,47 +318,46 @@ HybridRollers::HybridRollers(const Scene& scene,
   torque_.assign(z, 0.0);
 }
 
-int HybridRollers::Kernel(double th, int* idx, double* w) const {
+int HybridRollers::Kernel(double th, int* idx, double* w, double* dw) const {
+  // w_k = a_k / S with a_k = 1 - s_k^2, s_k = R0 (theta_k - th) / L, S = sum a_k; so
+  // dw_k/dth = (a_k' - w_k S') / S with a_k' = 2 s_k R0 / L.
   const int n = static_cast<int>(ring_nodes_.size());
   const double spacing = outer_radius_ * ring_dtheta_;
   const int m = static_cast<int>(std::ceil(spread_ / spacing));
   const long k0 = std::lround((th - ring_theta0_) / ring_dtheta_);
   int count = 0;
-  double sum = 0.0;
+  double sum = 0.0, dsum = 0.0;
   for (long k = k0 - m; k <= k0 + m; ++k) {
     const double s = outer_radius_ * (ring_theta0_ + k * ring_dtheta_ - th) / spread_;
     const double wk = 1.0 - s * s;
     if (wk <= 0.0) continue;
     idx[count] = static_cast<int>(((k % n) + n) % n);
     w[count] = wk;
+    if (dw) dw[count] = 2.0 * s * outer_radius_ / spread_, dsum += dw[count];
     sum += wk;
     ++count;
   }
-  for (int i = 0; i < count; ++i) w[i] /= sum;
+  for (int i = 0; i < count; ++i) {
+    w[i] /= sum;
+    if (dw) dw[i] = (dw[i] - w[i] * dsum) / sum;
+  }
   return count;
 }
 
 double HybridRollers::RaceRadius(const fe::NodalState& s, double th, double* slope) const {
-  // R(th) = R0 + sum_k w_k(th) u_k with w_k = a_k / S, a_k = 1 - s_k^2, S = sum a_k and
-  // s_k = R0 (theta_k - th) / L, so dw_k/dth = (a_k' - w_k S') / S with a_k' = 2 s_k R0 / L.
-  const int n = static_cast<int>(ring_nodes_.size());
-  const double spacing = outer_radius_ * ring_dtheta_;
-  const int m = static_cast<int>(std::ceil(spread_ / spacing));
-  const long k0 = std::lround((th - ring_theta0_) / ring_dtheta_);
-  double sum_a = 0.0, sum_da = 0.0, sum_au = 0.0, sum_dau = 0.0;
-  for (long k = k0 - m; k <= k0 + m; ++k) {
-    const double sk = outer_radius_ * (ring_theta0_ + k * ring_dtheta_ - th) / spread_;
-    const double a = 1.0 - sk * sk;
-    if (a <= 0.0) continue;
-    const int i = static_cast<int>(((k % n) + n) % n);
-    const int id = ring_nodes_[i];
-    const double u = (s.x[id] - s.x0[id]) * ring_ex_[i] + (s.y[id] - s.y0[id]) * ring_ey_[i];
-    const double da = 2.0 * sk * outer_radius_ / spread_;
-    sum_a += a, sum_da += da, sum_au += a * u, sum_dau += da * u;
+  int idx[kMaxKernel];
+  double w[kMaxKernel], dw[kMaxKernel];
+  const int n = Kernel(th, idx, w, slope ? dw : nullptr);
+  double u = 0.0, du = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const int id = ring_nodes_[idx[i]];
+    const double ui =
+        (s.x[id] - s.x0[id]) * ring_ex_[idx[i]] + (s.y[id] - s.y0[id]) * ring_ey_[idx[i]];
+    u += w[i] * ui;
+    if (slope) du += dw[i] * ui;
   }
-  const double mean_u = sum_au / sum_a;
-  if (slope) *slope = (sum_dau - mean_u * sum_da) / sum_a;
-  return outer_radius_ + mean_u;
+  if (slope) *slope = du;
+  return outer_radius_ + u;
 }
 
 void HybridRollers::RollerCentre(int j, double* x, double* y) const {
@@ -564,8 +565,7 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
     const double f = spall_fraction_[j];
     outer_force_[j] = inner_force_[j] = 0.0;
     race_contacts(j, profiles_[j], f, kFrictionSlots * j);
-    RollerProfile circle = profiles_[j];
-    circle.spalled = false;
+    const RollerProfile& circle = intact_profiles_[j];
     if (f < 1.0) race_contacts(j, circle, 1.0 - f, kFrictionSlots * j + 4);
     // Cage pocket walls: straight lines +-W/2 from the pocket's centre line.
     double cx, cy;

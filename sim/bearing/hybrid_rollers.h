@@ -160,7 +160,8 @@ class HybridRollers : public solver::ForceContributor {
   // Candidate points of roller j against the outer (which = 0) or inner (1) race.
   int RacePoints(int j, int which, const RollerProfile& profile, Point out[2]) const;
   // Kernel weights of the raceway nodes around angle th: indices into ring_nodes_ and weights.
-  int Kernel(double th, int* idx, double* w) const;
+  // With dw != nullptr also the weights' derivatives dw_i/dth.
+  int Kernel(double th, int* idx, double* w, double* dw = nullptr) const;
   // Deformed raceway radius at angle th (reference raceway radius + kernel-averaged radial
   // displacement) and, when slope != nullptr, its derivative dR/dth (m/rad).
   double RaceRadius(const fe::NodalState& s, double th, double* slope = nullptr) const;
@@ -169,6 +170,7 @@ class HybridRollers : public solver::ForceContributor {
   HybridOptions options_;
   solver::TimeFunction angle_, speed_, load_;
   std::vector<RollerProfile> profiles_;
+  std::vector<RollerProfile> intact_profiles_;  // the same circles without their spalls
   std::vector<double> spall_fraction_;
   std::vector<double> roller_mass_, roller_inertia_, centroid_x_, centroid_y_;  // body frame
   std::vector<double> pocket_angle_;  // pocket j centre line in the cage frame
