@@ -565,6 +565,8 @@ Scene ParseScene(const std::string& toml_text,
     scene.solver.time_step_safety = s.Number("time_step_safety", 0.9, {0.0, 1.0, true, false});
     scene.solver.threads = s.Integer("threads", 0, 0, 1024);
     scene.solver.checkpoint_interval_s = s.Number("checkpoint_interval_s", 0.0, kNonNegative);
+    scene.solver.max_energy_error_percent =
+        s.Number("max_energy_error_percent", 5.0, {0.0, 100.0, false, false});
     s.RejectUnknown();
   }
   top.RejectUnknown();

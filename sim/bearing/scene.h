@@ -122,6 +122,9 @@ struct SceneSolver {
   double time_step_safety = 0.9;       // fraction of the critical step
   int threads = 0;                     // 0: as many as OpenMP offers
   double checkpoint_interval_s = 0.0;  // 0: no checkpoints
+  // Abort the run once the energy balance error exceeds this (percent of the largest energy
+  // term; checked at every progress point). 0: never. A run past it is not trustworthy.
+  double max_energy_error_percent = 5.0;
 };
 
 struct Scene {

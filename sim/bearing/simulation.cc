@@ -157,6 +157,7 @@ SimulationSummary Simulation::Run() {
       sum.max_time_step = std::max(sum.max_time_step, s.max_time_step);
     }
     sum.threads = s.threads;
+    CheckEnergyBalance();
     const bool stop_now = solver.time() >= options_.stop_after_s && solver.time() < duration;
     if (solver.time() >= next_ckpt || stop_now) {
       if (solver.time() < duration) SaveCheckpoint(options_.checkpoint_path);
@@ -208,6 +209,28 @@ SimulationSummary Simulation::Run() {
   WriteOutputs(sum);
   if (!options_.checkpoint_path.empty()) std::remove(options_.checkpoint_path.c_str());
   return sum;
+}
+
+// A run whose energy books do not balance has gone wrong numerically (e.g. the full-FE section
+// above its speed range, docs/BEARING_MODEL.md): stop it instead of writing plausible-looking
+// signals. Energies below a millijoule (start of the ramp) are not judged.
+void Simulation::CheckEnergyBalance() const {
+  const double limit = model_->scene().solver.max_energy_error_percent;
+  if (limit <= 0.0) return;
+  const solver::Energies e = model_->solver().energies();
+  double largest = e.initial_kinetic;
+  for (double v :
+       {e.kinetic, e.internal, e.hourglass, e.contact, e.friction, e.damping, e.external})
+    largest = std::max(largest, std::abs(v));
+  const double error = 100.0 * e.BalanceError();
+  if (largest < 1e-3 || error <= limit) return;
+  std::ostringstream os;
+  os.precision(3);
+  os << "simulate: energy balance error " << error << " % at t = " << 1e3 * model_->solver().time()
+     << " ms exceeds solver.max_energy_error_percent = " << limit
+     << "; the results would not be trustworthy and were not written (refine mesh.size_mm, "
+        "lower operation.speed_rpm, or use model.fidelity = \"hybrid\")";
+  throw NumericalError(os.str());
 }
 
 void Simulation::WriteOutputs(const SimulationSummary& summary) const {

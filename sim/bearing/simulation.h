@@ -75,6 +75,7 @@ class Simulation {
   void SaveCheckpoint(const std::string& path) const;
   void LoadCheckpoint(const std::string& path);
   void WriteOutputs(const SimulationSummary& summary) const;
+  void CheckEnergyBalance() const;  // throws NumericalError past solver.max_energy_error_percent
 
   SimulationOptions options_;
   std::unique_ptr<BearingModel> model_;

@@ -156,6 +156,8 @@ TEST(Scene, BadScenesGiveOneLineErrorsNamingFileLineAndKey) {
   ExpectOneLineError(ErrorOf("[bearing]\ncatalog = \"X1\"\n"), "bearing.catalog");
   ExpectOneLineError(ErrorOf("[mesh\n"), "bad.toml:1:");
   ExpectOneLineError(ErrorOf("[mesh]\nsize_mm = 2.0\n"), "mesh.contact_size_mm: too coarse");
+  ExpectOneLineError(ErrorOf("[solver]\nmax_energy_error_percent = -1\n"),
+                     "bad.toml:2: solver.max_energy_error_percent: must be in [0, 100]");
 }
 
 TEST(Scene, RingWidthDefaultsToTheN205EMsAndMayNotBeNarrowerThanTheRollers) {
