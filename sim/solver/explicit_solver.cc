@@ -402,7 +402,14 @@ void ExplicitSolver::Step() {
   } else {
     ElementPass(h, relative, !fuse_gather);
   }
-  double dt = options_.time_step_scale * elements_.StableStep(state_);
+  double dt = 0.0;
+  try {
+    dt = options_.time_step_scale * elements_.StableStep(state_);
+  } catch (const NumericalError& e) {  // say when (an inverted element is found there)
+    std::ostringstream os;
+    os << e.what() << " at t = " << time_ << " s (step " << step_ << ")";
+    throw NumericalError(os.str());
+  }
   dt = std::min(dt, options_.max_time_step);
   for (ForceContributor* c : contributors_) dt = std::min(dt, c->StableTimeStep(state_));
   if (!(dt > 0.0) || !std::isfinite(dt)) {

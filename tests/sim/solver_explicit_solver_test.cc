@@ -117,6 +117,23 @@ TEST(ExplicitSolver, FreeRigidTranslationFollowsNewton) {
   EXPECT_LT(e.BalanceError(), 1e-3);
 }
 
+TEST(ExplicitSolver, InvertedElementErrorSaysWhen) {
+  // One corner of a single element driven through the opposite one: the step that finds the
+  // inverted element names it and the simulated time (a user sees when the run went wrong).
+  fe::RectangleSpec spec;
+  spec.width = spec.height = 1e-3;
+  ExplicitSolver s(fe::MakeRectangle("b", spec), {fe::Section{}});
+  s.state().vx[0] = s.state().vy[0] = 1e4;  // node 0 at (0, 0) towards (1, 1) mm
+  try {
+    s.Run(1e-6);
+    FAIL() << "expected a NumericalError";
+  } catch (const NumericalError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("element 0 (part 0) inverted"), std::string::npos) << what;
+    EXPECT_NE(what.find(" at t = "), std::string::npos) << what;
+  }
+}
+
 TEST(ExplicitSolver, RelativeDampingSparesSpinPlainDampingBrakesIt) {
   fe::DiscSpec d;
   d.radius = 0.005, d.n_core = 4, d.n_radial = 3;
