@@ -89,10 +89,15 @@ bool SolverOptions::IsValid(std::string* error) const {
 double Energies::BalanceError() const {
   const double total = kinetic + internal + hourglass + contact + friction + damping;
   const double err = std::abs(total - initial_kinetic - external);
+  const double scale = Scale();
+  return scale > 0.0 ? err / scale : 0.0;
+}
+
+double Energies::Scale() const {
   double scale = initial_kinetic;
   for (double v : {kinetic, internal, hourglass, contact, friction, damping, external})
     scale = std::max(scale, std::abs(v));
-  return scale > 0.0 ? err / scale : 0.0;
+  return scale;
 }
 
 std::string SolverSummary::BriefReport() const {
@@ -535,11 +540,7 @@ void ExplicitSolver::MaybeOutput(bool force) {
   last_output_step_ = step_;
   if (options_.max_energy_error > 0.0) {
     const Energies e = energies();
-    double largest = e.initial_kinetic;
-    for (double v :
-         {e.kinetic, e.internal, e.hourglass, e.contact, e.friction, e.damping, e.external})
-      largest = std::max(largest, std::abs(v));
-    if (largest > options_.energy_check_floor && e.BalanceError() > options_.max_energy_error) {
+    if (e.Scale() > options_.energy_check_floor && e.BalanceError() > options_.max_energy_error) {
       std::ostringstream os;
       os << "solver: energy balance error " << e.BalanceError() << " exceeds "
          << options_.max_energy_error << " at t = " << time_ << " s (step " << step_ << ")";

@@ -109,8 +109,10 @@ struct Energies {
   double damping = 0.0;         // mass + stiffness damping dissipation
   double external = 0.0;        // applied loads + prescribed-motion (reaction) work
   double external_loads = 0.0;  //   of which applied loads (rigid-body forces + contributors)
-  // |E_kin + E_int + E_hg + E_contact + E_fric + E_damp - E_kin(0) - W_ext| / max of the terms.
+  // |E_kin + E_int + E_hg + E_contact + E_fric + E_damp - E_kin(0) - W_ext| / Scale().
   double BalanceError() const;
+  // The largest energy term's magnitude (initial kinetic included), J: BalanceError's scale.
+  double Scale() const;
 };
 
 struct SolverSummary {
