@@ -422,7 +422,11 @@ void ExplicitSolver::Step() {
     os << "solver: invalid time step " << dt << " at t = " << time_ << " s (step " << step_ << ")";
     throw NumericalError(os.str());
   }
-  for (ForceContributor* c : contributors_) c->AddForces(state_, time_, dt);
+  if (options_.track_contributor_work) {
+    TrackedAddForces(dt);
+  } else {
+    for (ForceContributor* c : contributors_) c->AddForces(state_, time_, dt);
+  }
   if (relative) ReducePartRigidMotion();
 
   // Remember v^(n-1/2) of constrained nodes (reaction work).
@@ -453,6 +457,7 @@ void ExplicitSolver::Step() {
   const double dt_avg = k.dt_avg;
 
   ApplyConstraints(dt, dt_avg, time_ + 0.5 * dt, time_ + dt);
+  if (options_.track_contributor_work) BookTrackedWork(dt_avg);
   time_ += dt;
   dt_prev_ = dt;
   dt_ = dt;
@@ -548,6 +553,95 @@ void ExplicitSolver::MaybeOutput(bool force) {
     }
   }
   if (callback_) callback_(*this);
+}
+
+void ExplicitSolver::TrackedAddForces(double dt) {
+  const size_t nn = state_.size();
+  const size_t n = 1 + contributors_.size();
+  if (ledger_force_.size() != n) {
+    ledger_force_.assign(n, std::vector<double>(2 * nn, 0.0));
+    ledger_work_.assign(n, 0.0), ledger_edit_.assign(n, 0.0);
+    ledger_scratch_.assign(2 * nn, 0.0);
+  }
+  auto kinetic = [&] {
+    double k = 0.0;
+    for (size_t i = 0; i < nn; ++i)
+      k += 0.5 * state_.mass[i] * (state_.vx[i] * state_.vx[i] + state_.vy[i] * state_.vy[i]);
+    return k;
+  };
+  // The element forces are gathered into fx / fy before the contributors run (see Step()).
+  std::copy(state_.fx.begin(), state_.fx.end(), ledger_force_[0].begin());
+  std::copy(state_.fy.begin(), state_.fy.end(), ledger_force_[0].begin() + nn);
+  for (size_t c = 0; c < contributors_.size(); ++c) {
+    std::copy(state_.fx.begin(), state_.fx.end(), ledger_scratch_.begin());
+    std::copy(state_.fy.begin(), state_.fy.end(), ledger_scratch_.begin() + nn);
+    const double k0 = kinetic();
+    contributors_[c]->AddForces(state_, time_, dt);
+    ledger_edit_[1 + c] += kinetic() - k0;
+    std::vector<double>& f = ledger_force_[1 + c];
+    for (size_t i = 0; i < nn; ++i) {
+      f[i] = state_.fx[i] - ledger_scratch_[i];
+      f[nn + i] = state_.fy[i] - ledger_scratch_[nn + i];
+    }
+  }
+  ledger_vx_ = state_.vx, ledger_vy_ = state_.vy;  // v^(n-1/2) as the update sees it
+}
+
+void ExplicitSolver::BookTrackedWork(double dt_avg) {
+  const size_t nn = state_.size();
+  for (size_t c = 0; c < ledger_force_.size(); ++c) {
+    const std::vector<double>& f = ledger_force_[c];
+    double w = 0.0;
+    for (size_t i = 0; i < nn; ++i)
+      w += f[i] * (ledger_vx_[i] + state_.vx[i]) + f[nn + i] * (ledger_vy_[i] + state_.vy[i]);
+    ledger_work_[c] += 0.5 * dt_avg * w;
+  }
+}
+
+std::vector<ContributorLedger> ExplicitSolver::ContributorLedgers() const {
+  std::vector<ContributorLedger> out;
+  if (ledger_work_.empty()) return out;
+  ContributorLedger el;
+  el.name = "elements";
+  el.work = ledger_work_[0];
+  el.stored = elements_.InternalEnergy() + elements_.HourglassEnergy();
+  el.dissipated = elements_.DampingEnergy();
+  out.push_back(el);
+  for (size_t c = 0; c < contributors_.size(); ++c) {
+    ContributorLedger l;
+    l.name = contributors_[c]->Name();
+    l.work = ledger_work_[1 + c], l.velocity_edit = ledger_edit_[1 + c];
+    l.stored = contributors_[c]->StoredEnergy();
+    l.dissipated = contributors_[c]->DissipatedEnergy();
+    l.external = contributors_[c]->ExternalWork();
+    out.push_back(l);
+  }
+  return out;
+}
+
+std::string LedgerReport(std::vector<ContributorLedger> ledgers, int max_rows) {
+  std::stable_sort(ledgers.begin(), ledgers.end(), [](const auto& a, const auto& b) {
+    return std::abs(a.Created()) > std::abs(b.Created());
+  });
+  double total = 0.0;
+  for (const ContributorLedger& l : ledgers) total += l.Created();
+  std::ostringstream os;
+  os << "energy ledger (J; created = work + velocity edits + stored + dissipated - external), "
+     << "total created " << total;
+  char buf[256];
+  for (int i = 0; i < static_cast<int>(ledgers.size()) && i < max_rows; ++i) {
+    const ContributorLedger& l = ledgers[i];
+    std::snprintf(buf,
+                  sizeof buf,
+                  "\n  %-40s created %+10.3e  work %+10.3e  stored %10.3e  dissipated %10.3e",
+                  l.name.c_str(),
+                  l.Created(),
+                  l.work + l.velocity_edit,
+                  l.stored,
+                  l.dissipated);
+    os << buf;
+  }
+  return os.str();
 }
 
 Energies ExplicitSolver::energies() const {

@@ -94,6 +94,10 @@ struct SolverOptions {
   // OpenMP threads. 0: one per 10,000 elements, at most OpenMP's default (small models run
   // faster on one thread). Results do not depend on it (bit-identical).
   int num_threads = 0;
+  // Keep a work ledger per contributor (ContributorLedgers()): finds which contact pair or
+  // constraint creates energy when the balance fails. Costs two copies of the nodal forces per
+  // contributor per step: a diagnostic, off by default.
+  bool track_contributor_work = false;
 
   bool IsValid(std::string* error) const;
 };
@@ -114,6 +118,24 @@ struct Energies {
   // The largest energy term's magnitude (initial kinetic included), J: BalanceError's scale.
   double Scale() const;
 };
+
+// One contributor's (or the elements') energy account, cumulative since t = 0 (J). `work` is the
+// work its forces did on the nodes, sum_n f^n . (v^(n-1/2) + v^(n+1/2)) dt_avg / 2 (the same
+// central-difference rule as the balance), `velocity_edit` the kinetic energy its direct edits of
+// velocities changed (projections, ties). Its own books say the energy went into `stored`, was
+// `dissipated` or came in as `external` work; what they do not explain is Created():
+//   Created = work + velocity_edit + stored + dissipated - external   (> 0: energy created).
+// For the elements stored = internal + hourglass and dissipated = stiffness damping.
+struct ContributorLedger {
+  std::string name;
+  double work = 0.0, velocity_edit = 0.0;
+  double stored = 0.0, dissipated = 0.0, external = 0.0;
+  double Created() const { return work + velocity_edit + stored + dissipated - external; }
+};
+
+// The ledgers sorted by |Created()|, largest first, as a table of at most max_rows rows plus the
+// total (one line each, J).
+std::string LedgerReport(std::vector<ContributorLedger> ledgers, int max_rows = 10);
 
 struct SolverSummary {
   long steps = 0;
@@ -165,6 +187,9 @@ class ExplicitSolver {
   double time_step() const { return dt_; }  // last step taken (s)
   // Energy terms at the last completed step (sums in a fixed order).
   Energies energies() const;
+  // With SolverOptions::track_contributor_work: the elements' ledger first, then one per
+  // contributor in insertion order (empty otherwise).
+  std::vector<ContributorLedger> ContributorLedgers() const;
   const RigidBodyState& rigid_body_state(int i) const { return rigid_states_[i]; }
   // Rigid motion of part p (from the last step's velocities): mass-centre velocity and spin.
   void PartRigidMotion(int part, double* vx, double* vy, double* omega) const;
@@ -213,6 +238,14 @@ class ExplicitSolver {
   int threads_ = 1;
   double mass_damping_ = 0.0;  // D_s, 1/s
   double damping_work_ = 0.0, reaction_work_ = 0.0, load_work_ = 0.0, initial_kinetic_ = 0.0;
+
+  // Work ledger (track_contributor_work): forces of the elements [0] and of each contributor
+  // [1 + c] at step n (x then y, 2 x nodes each), velocities after the contributors, scratch.
+  void TrackedAddForces(double dt);
+  void BookTrackedWork(double dt_avg);
+  std::vector<std::vector<double>> ledger_force_;
+  std::vector<double> ledger_work_, ledger_edit_;
+  std::vector<double> ledger_vx_, ledger_vy_, ledger_scratch_;
 };
 
 }  // namespace spallkit::solver

@@ -117,6 +117,66 @@ TEST(ExplicitSolver, FreeRigidTranslationFollowsNewton) {
   EXPECT_LT(e.BalanceError(), 1e-3);
 }
 
+// A constant force on one node of a free elastic disc, applied by two contributors: one books
+// its work as ExternalWork() (honest), one books nothing (the kind of bug the ledger is for).
+// The ledger finds the second: its Created() is the work F . dx of the node, the honest one's
+// and the elements' are ~0, and the ledgers add up to the global balance error.
+class PointForce : public ForceContributor {
+ public:
+  PointForce(int node, double fx, bool book) : node_(node), fx_(fx), book_(book) {}
+  void AddForces(fe::NodalState& s, double, double dt) override {
+    s.fx[node_] += fx_;
+    if (book_ && have_) work_ += fx_ * (s.x[node_] - x_prev_);  // increment of the last step
+    x_prev_ = s.x[node_], have_ = true;
+    (void)dt;
+  }
+  double ExternalWork() const override { return work_; }
+  std::string Name() const override { return book_ ? "honest" : "unbooked"; }
+
+ private:
+  int node_;
+  double fx_;
+  bool book_;
+  bool have_ = false;
+  double x_prev_ = 0.0, work_ = 0.0;
+};
+
+TEST(ExplicitSolver, WorkLedgerFindsTheContributorThatDoesNotBookItsWork) {
+  fe::DiscSpec d;
+  d.radius = 0.01, d.n_core = 3, d.n_radial = 2;
+  const fe::Mesh mesh = fe::MakeDisc("d", d);
+  fe::Section sec;
+  sec.thickness = 0.01;
+  SolverOptions opt;
+  opt.track_contributor_work = true;
+  ExplicitSolver s(mesh, {sec}, opt);
+  const int node = mesh.node_sets.at("d.center")[0];
+  PointForce honest(node, 400.0, true), unbooked(node, 200.0, false);
+  s.AddContributor(&honest);
+  s.AddContributor(&unbooked);
+  s.Run(2e-4);
+  const double dx = s.state().x[node] - mesh.x[node];
+  const auto ledgers = s.ContributorLedgers();
+  ASSERT_EQ(ledgers.size(), 3u);
+  EXPECT_EQ(ledgers[0].name, "elements");
+  EXPECT_EQ(ledgers[2].name, "unbooked");
+  const double w = 200.0 * dx;
+  ASSERT_GT(w, 1e-4);
+  EXPECT_NEAR(ledgers[2].Created(), w, 0.02 * w);
+  EXPECT_NEAR(ledgers[1].Created(), 0.0, 0.02 * w);  // the honest one's book lags half a step
+  EXPECT_NEAR(ledgers[0].Created(), 0.0, 1e-3 * w);
+  const Energies e = s.energies();
+  double created = 0.0;
+  for (const auto& l : ledgers) created += l.Created();
+  EXPECT_NEAR(created, e.BalanceError() * e.Scale(), 0.02 * w);
+  const std::string report = LedgerReport(ledgers);
+  EXPECT_EQ(report.find("unbooked"), report.find("\n  ") + 3) << report;  // listed first
+  // Off by default: no ledgers.
+  ExplicitSolver plain(mesh, {sec});
+  plain.Run(1e-5);
+  EXPECT_TRUE(plain.ContributorLedgers().empty());
+}
+
 TEST(ExplicitSolver, InvertedElementErrorSaysWhen) {
   // One corner of a single element driven through the opposite one: the step that finds the
   // inverted element names it and the simulated time (a user sees when the run went wrong).
