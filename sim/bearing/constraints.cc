@@ -1,7 +1,9 @@
 #include "sim/bearing/constraints.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "core/error.h"
 
@@ -109,6 +111,106 @@ void RigidPart::LoadState(const std::string& bytes) {
     ref_x_.push_back(UnpackDouble(bytes.substr(k * sizeof(double), sizeof(double)), name_));
     ref_y_.push_back(UnpackDouble(bytes.substr((k + 1) * sizeof(double), sizeof(double)), name_));
   }
+}
+
+bool CageGuideOptions::IsValid(std::string* error) const {
+  if (radial_play_m > 0.0 && stiffness_n_per_m > 0.0) return true;
+  if (error) *error = "cage guide: radial_play_m and stiffness_n_per_m must be > 0";
+  return false;
+}
+
+CagePocketGuide::CagePocketGuide(std::string name,
+                                 std::vector<std::vector<int>> rollers,
+                                 std::vector<std::vector<int>> pockets,
+                                 std::vector<int> cage,
+                                 double pitch_radius_m,
+                                 const CageGuideOptions& options)
+    : name_(std::move(name)),
+      rollers_(std::move(rollers)),
+      pockets_(std::move(pockets)),
+      cage_(std::move(cage)),
+      pitch_radius_(pitch_radius_m),
+      options_(options),
+      force_(rollers_.size(), 0.0) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw InputError(name_ + ": " + error);
+  if (rollers_.empty() || rollers_.size() != pockets_.size() || cage_.empty())
+    throw InputError(name_ + ": needs one pocket per roller and a cage node set");
+  for (size_t j = 0; j < rollers_.size(); ++j)
+    if (rollers_[j].empty() || pockets_[j].empty())
+      throw InputError(name_ + ": empty roller or pocket node set " + std::to_string(j));
+}
+
+namespace {
+struct MassCentre {
+  double m = 0, x = 0, y = 0;
+};
+MassCentre CentreOf(const fe::NodalState& s, const std::vector<int>& nodes) {
+  MassCentre c;
+  for (int id : nodes) c.m += s.mass[id], c.x += s.mass[id] * s.x[id], c.y += s.mass[id] * s.y[id];
+  c.x /= c.m, c.y /= c.m;
+  return c;
+}
+}  // namespace
+
+void CagePocketGuide::AddForces(fe::NodalState& s, double /*t*/, double /*dt*/) {
+  potential_ = 0.0;
+  const MassCentre cage = CentreOf(s, cage_);
+  double cage_inertia = -1.0;  // about the cage's mass centre, computed when first needed
+  for (size_t j = 0; j < rollers_.size(); ++j) {
+    force_[j] = 0.0;
+    const MassCentre roller = CentreOf(s, rollers_[j]);
+    const MassCentre pocket = CentreOf(s, pockets_[j]);
+    const double lx = pocket.x - cage.x, ly = pocket.y - cage.y, l = std::hypot(lx, ly);
+    const double ex = lx / l, ey = ly / l;
+    const double dx = roller.x - cage.x, dy = roller.y - cage.y;
+    const double radial = dx * ex + dy * ey - pitch_radius_;
+    const double over = std::abs(radial) - options_.radial_play_m;
+    if (over <= 0.0) continue;
+    const double q = options_.stiffness_n_per_m * over;
+    potential_ += 0.5 * q * over;
+    force_[j] = q;
+    // Force on the roller, back towards the play band along e (at its mass centre).
+    const double sgn = radial > 0.0 ? -1.0 : 1.0;
+    const double fx = sgn * q * ex, fy = sgn * q * ey;
+    for (int id : rollers_[j]) {
+      const double w = s.mass[id] / roller.m;
+      s.fx[id] += w * fx, s.fy[id] += w * fy;
+    }
+    // The opposite force at the roller's centre, on the cage: resultant by mass plus the torque
+    // (c_j - c_cage) x (-F) by mass times e_z x r (the RigidPart turns both into exact rigid
+    // accelerations). With e turning with the cage this is V's derivative by the cage angle.
+    if (cage_inertia < 0.0) {
+      cage_inertia = 0.0;
+      for (int id : cage_) {
+        const double rx = s.x[id] - cage.x, ry = s.y[id] - cage.y;
+        cage_inertia += s.mass[id] * (rx * rx + ry * ry);
+      }
+    }
+    const double torque = -(dx * fy - dy * fx);
+    for (int id : cage_) {
+      const double rx = s.x[id] - cage.x, ry = s.y[id] - cage.y, mi = s.mass[id];
+      s.fx[id] += -mi / cage.m * fx - torque * mi * ry / cage_inertia;
+      s.fy[id] += -mi / cage.m * fy + torque * mi * rx / cage_inertia;
+    }
+  }
+}
+
+double CagePocketGuide::StableTimeStep(const fe::NodalState& s) const {
+  // The spring between a roller's and the cage's mass centres: omega^2 = k (1/m_r + 1/m_c).
+  // Lumped masses are fixed for a run: computed once.
+  if (stable_step_ == 0.0) {
+    double cage_mass = 0.0, lightest = std::numeric_limits<double>::infinity();
+    for (int id : cage_) cage_mass += s.mass[id];
+    for (const auto& r : rollers_) {
+      double m = 0.0;
+      for (int id : r) m += s.mass[id];
+      lightest = std::min(lightest, m);
+    }
+    const double omega2 = options_.stiffness_n_per_m * (1.0 / lightest + 1.0 / cage_mass);
+    stable_step_ = 0.9 * 2.0 / std::sqrt(omega2);
+  }
+  return stable_step_;
 }
 
 TiedNodes::TiedNodes(std::string name, std::vector<std::pair<int, int>> pairs)

@@ -22,7 +22,9 @@
 //    velocity difference left by part-relative mass damping; the kinetic energy it removes is
 //    reported as DissipatedEnergy().
 //
-// Neither keeps history besides cumulative energies, which SaveState/LoadState carry.
+//  - CagePocketGuide: the roller-guided cage's radial retention (CageGuideOptions below).
+//
+// None keeps history besides cumulative energies, which SaveState/LoadState carry.
 #pragma once
 
 #include <string>
@@ -59,6 +61,55 @@ class RigidPart : public solver::ForceContributor {
   std::vector<int> nodes_;
   std::vector<double> ref_x_, ref_y_;  // reference shape about the mass centre
   double work_ = 0.0;
+};
+
+// Roller-guided cage (both models, the same assumption): each pocket holds its roller's centre
+// within +-radial_play of the pitch radius, measured along the pocket's centre line in the cage
+// frame; beyond, a linear spring. Straight pocket walls alone leave the cage free to drift
+// radially with the rollers sliding along their orbits (hybrid: cage centre 12 mm off; full FE:
+// 1.9 mm in 5 ms at 6000 rpm, until the webs' corners struck the rollers). Table 1 gives no
+// pocket shape, so the play is an assumption (docs/BEARING_MODEL.md).
+struct CageGuideOptions {
+  double radial_play_m = 0.5e-3;
+  double stiffness_n_per_m = 2e8;  // whole section
+
+  bool IsValid(std::string* error) const;
+};
+
+// The FE model's cage guide: spring forces between each roller's mass centre (on its nodes, in
+// proportion to mass: no torque on the roller) and the cage (on the cage nodes as the force and
+// torque of the same force at the roller's centre; the cage's RigidPart, added after this,
+// makes them rigid-body accelerations). The force is the exact gradient of
+//   V = sum_j 1/2 k max(0, |(c_j - c_cage) . e_j - R_pitch| - play)^2,
+// e_j = unit vector from the cage's mass centre to the mass centre of pocket j's wall nodes
+// (it turns with the cage), so it does no net work over a cycle (StoredEnergy() = V).
+class CagePocketGuide : public solver::ForceContributor {
+ public:
+  // rollers[j] / pockets[j]: node sets of roller j and of the walls of its pocket; cage: every
+  // cage node. Throws InputError for empty sets or invalid options.
+  CagePocketGuide(std::string name,
+                  std::vector<std::vector<int>> rollers,
+                  std::vector<std::vector<int>> pockets,
+                  std::vector<int> cage,
+                  double pitch_radius_m,
+                  const CageGuideOptions& options);
+
+  void AddForces(fe::NodalState& state, double t, double dt) override;
+  double StableTimeStep(const fe::NodalState& state) const override;
+  double StoredEnergy() const override { return potential_; }
+  std::string Name() const override { return name_; }
+  // Radial force on roller j at the last step (N, >= 0; 0 inside the play).
+  double Force(int j) const { return force_[j]; }
+
+ private:
+  std::string name_;
+  std::vector<std::vector<int>> rollers_, pockets_;
+  std::vector<int> cage_;
+  double pitch_radius_ = 0.0;
+  CageGuideOptions options_;
+  double potential_ = 0.0;
+  std::vector<double> force_;
+  mutable double stable_step_ = 0.0;  // 0: not yet computed
 };
 
 class TiedNodes : public solver::ForceContributor {

@@ -132,7 +132,6 @@ bool HybridOptions::IsValid(std::string* error) const {
     return fail("hybrid model: tangential_stiffness_ratio must be > 0");
   if (!(cage_stiffness_n_per_m > 0))
     return fail("hybrid model: cage_stiffness_n_per_m must be > 0");
-  if (!(cage_radial_play_m > 0)) return fail("hybrid model: cage_radial_play_m must be > 0");
   if (!(spread_half_width_m >= 0)) return fail("hybrid model: spread_half_width_m must be >= 0");
   return true;
 }
@@ -144,10 +143,12 @@ HybridRollers::HybridRollers(const Scene& scene,
                              const BearingMesh& housing,
                              const fe::NodalState& state,
                              const HybridOptions& options,
+                             const CageGuideOptions& cage_guide,
                              double load_ramp_s)
-    : scene_(scene), options_(options) {
+    : scene_(scene), options_(options), cage_guide_(cage_guide) {
   std::string err;
   if (!options_.IsValid(&err)) throw InputError(err);
+  if (!cage_guide_.IsValid(&err)) throw InputError(err);
   const SceneGeometry& g = scene_.geometry;
   const int z = g.bearing.num_elements;
   const double t = g.thickness_m;
@@ -596,15 +597,15 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
     cage_force_[j] = contact(j, 2, false, &lead, 1, &friction_[kFrictionSlots * j + 2]) +
                      contact(j, 2, false, &trail, 1, &friction_[kFrictionSlots * j + 3]);
     // Radial retention (roller-guided cage): the pocket keeps the roller within
-    // +-cage_radial_play of the pitch radius of the cage frame, else the cage could drift
+    // +-radial_play of the pitch radius of the cage frame, else the cage could drift
     // sideways with the rollers sliding along their orbits (walls alone allow that mode).
     {
       const double ex = std::cos(psi), ey = std::sin(psi);
       const double radial = (cx - cage_.x) * ex + (cy - cage_.y) * ey - pitch_radius_;
-      const double over = std::abs(radial) - options_.cage_radial_play_m;
+      const double over = std::abs(radial) - cage_guide_.radial_play_m;
       if (over > 0) {
         const double sgn = radial > 0 ? -1.0 : 1.0;  // force on the roller, along e
-        const double kc = options_.cage_stiffness_n_per_m;
+        const double kc = cage_guide_.stiffness_n_per_m;
         potential += 0.5 * kc * over * over;
         const double q = kc * over;
         const double fx = sgn * q * ex, fy = sgn * q * ey;

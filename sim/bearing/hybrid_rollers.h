@@ -29,7 +29,8 @@
 //  - roller-cage: the pocket walls are straight lines (W = D + pocket clearance apart), the
 //    roller's extent towards a wall is its support function (the spall corners when the spall
 //    faces the wall); linear spring. Radially each pocket holds its roller within
-//    +-cage_radial_play of the pitch radius (roller-guided cage), linear spring beyond.
+//    +-radial_play of the pitch radius (roller-guided cage, CageGuideOptions in constraints.h,
+//    the same assumption as the FE model's), linear spring beyond.
 //  - every contact: normal damping (fraction of critical of the contact's two-body oscillator:
 //    reduced mass of the roller and the counter body, the ring's kernel effective mass for the
 //    outer race), regularised Coulomb friction mu = mu_d + (mu_s - mu_d) exp(-decay |v|)
@@ -44,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/bearing/constraints.h"
 #include "sim/bearing/mesher.h"
 #include "sim/bearing/scene.h"
 #include "sim/solver/explicit_solver.h"
@@ -90,9 +92,6 @@ struct HybridOptions {
   double contact_damping_ratio = 0.1;       // normal contact damping, fraction of critical
   double tangential_stiffness_ratio = 1.0;  // stick spring / normal tangent stiffness
   double cage_stiffness_n_per_m = 2e8;      // pocket wall spring (whole section)
-  // Roller-guided cage: radial play of a roller centre in its pocket about the pitch radius
-  // (assumed; Table 1 gives none). Without it the free cage can drift sideways.
-  double cage_radial_play_m = 0.5e-3;
   // Half-width L of the kernel that spreads an outer-race contact over raceway nodes; 0: the
   // larger of 1 mm and 2 raceway node spacings.
   double spread_half_width_m = 0.0;
@@ -114,6 +113,7 @@ class HybridRollers : public solver::ForceContributor {
                 const BearingMesh& housing,
                 const fe::NodalState& state,
                 const HybridOptions& options,
+                const CageGuideOptions& cage_guide,
                 double load_ramp_s);
 
   void AddForces(fe::NodalState& state, double t, double dt) override;
@@ -168,6 +168,7 @@ class HybridRollers : public solver::ForceContributor {
 
   Scene scene_;
   HybridOptions options_;
+  CageGuideOptions cage_guide_;
   solver::TimeFunction angle_, speed_, load_;
   std::vector<RollerProfile> profiles_;
   std::vector<RollerProfile> intact_profiles_;  // the same circles without their spalls

@@ -54,7 +54,7 @@ bool BearingModelOptions::IsValid(std::string* error) const {
   if (!(contact_damping_ratio >= 0 && contact_damping_ratio <= 1))
     return fail("bearing model: contact_damping_ratio must be in [0, 1]");
   if (!(load_ramp_fraction >= 0)) return fail("bearing model: load_ramp_fraction must be >= 0");
-  return true;
+  return cage_guide.IsValid(error);
 }
 
 BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& options)
@@ -88,6 +88,7 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
   so.damping_frequency = scene_.damping.reference_hz;
   so.damping_relative_to_rigid_motion = true;
   so.num_threads = scene_.solver.threads;
+  so.track_contributor_work = options_.track_contributor_work;
   so.output_every_steps = 1;  // the recorder samples sensor velocities every step
   solver_ = std::make_unique<solver::ExplicitSolver>(mesh, std::move(sections), so);
 
@@ -104,8 +105,12 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
   if (hybrid) {
     // Rollers, cage and inner ring: rigid bodies in one contributor (before the tie, which
     // must see the contact forces on the ring nodes).
-    hybrid_ = std::make_unique<HybridRollers>(
-        scene_, mesh_, solver_->state(), options_.hybrid, options_.load_ramp_fraction * ramp);
+    hybrid_ = std::make_unique<HybridRollers>(scene_,
+                                              mesh_,
+                                              solver_->state(),
+                                              options_.hybrid,
+                                              options_.cage_guide,
+                                              options_.load_ramp_fraction * ramp);
     solver_->AddContributor(hybrid_.get());
   } else {
     auto bore = mesh.curves.find("inner_ring.bore");
@@ -142,9 +147,13 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
     };
     outer_pairs_.push_back(make("outer_ring.raceway", race));
     inner_pairs_.push_back(make("inner_ring.raceway", race));
-    const std::string pocket = "cage.pocket" + std::to_string(j);
-    cage_pairs_.push_back(make(pocket + ".leading", cage));
-    cage_pairs_.push_back(make(pocket + ".trailing", cage));
+    // Pocket j lies between web j (its leading wall) and web j-1 (its trailing wall). The
+    // masters are the webs' closed outlines, not the open walls: a node past the free end of an
+    // open wall projects onto the end with the wall's normal and counts as penetrating while
+    // beside the web, a force field that is not conservative (energy created when a drifting
+    // cage's web corner met a roller); the outline's corner is a convex vertex, which is.
+    cage_pairs_.push_back(make("cage.web" + std::to_string(j), cage));
+    cage_pairs_.push_back(make("cage.web" + std::to_string((j + z - 1) % z), cage));
     roller_nodes_.push_back(NodeSet(mesh, roller + ".all"));
   }
   for (auto& p : outer_pairs_) solver_->AddContributor(p.get());
@@ -153,6 +162,15 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
 
   // Constraints last: they see every force.
   if (!hybrid) {
+    std::vector<std::vector<int>> pockets;
+    for (int j = 0; j < z; ++j) pockets.push_back(NodeSet(mesh, "cage.pocket" + std::to_string(j)));
+    cage_guide_ = std::make_unique<CagePocketGuide>("cage_guide",
+                                                    roller_nodes_,
+                                                    std::move(pockets),
+                                                    NodeSet(mesh, "cage.all"),
+                                                    mesh_.pitch_radius_m,
+                                                    options_.cage_guide);
+    solver_->AddContributor(cage_guide_.get());
     cage_ = std::make_unique<RigidPart>("cage_rigid", NodeSet(mesh, "cage.all"));
     solver_->AddContributor(cage_.get());
   }
@@ -217,7 +235,7 @@ double BearingModel::RollerInnerForce(int j) const {
 double BearingModel::RollerCageForce(int j) const {
   if (hybrid_) return hybrid_->CageForce(j);
   return cage_pairs_[2 * j]->Resultant().NormalMagnitude() +
-         cage_pairs_[2 * j + 1]->Resultant().NormalMagnitude();
+         cage_pairs_[2 * j + 1]->Resultant().NormalMagnitude() + cage_guide_->Force(j);
 }
 
 BodyMotion BearingModel::RollerMotion(int j) const {
@@ -279,8 +297,9 @@ std::string BearingModel::Describe() const {
      << outer_pairs_.size() + inner_pairs_.size() + cage_pairs_.size()
      << " contact pairs (penalty f = " << options_.race_penalty_scale << " races, "
      << options_.cage_penalty_scale << " cage, damping " << options_.contact_damping_ratio
-     << "); cage rigid (" << cage_->nodes().size() << " nodes); ring-adapter tie "
-     << tie_->num_pairs() << " node pairs";
+     << "); cage rigid (" << cage_->nodes().size() << " nodes, roller-guided: radial play +-"
+     << options_.cage_guide.radial_play_m * 1e3 << " mm); ring-adapter tie " << tie_->num_pairs()
+     << " node pairs";
   for (const SensorChannel& c : channels_)
     os << "\nsensor " << c.sensor << " " << c.direction << ": node " << c.node << " ("
        << c.distance_m * 1e3 << " mm from the point)";

@@ -57,6 +57,11 @@ struct BearingModelOptions {
   double load_ramp_fraction = 1.0;
   // Hybrid model (scene model.fidelity = "hybrid") contact options.
   HybridOptions hybrid;
+  // Roller-guided cage's radial play, both models (constraints.h).
+  CageGuideOptions cage_guide;
+  // Diagnostic: the solver keeps a work ledger per contact pair and constraint
+  // (solver::SolverOptions::track_contributor_work; slower).
+  bool track_contributor_work = false;
 
   bool IsValid(std::string* error) const;
 };
@@ -119,6 +124,7 @@ class BearingModel {
   BearingMesh mesh_;
   std::unique_ptr<solver::ExplicitSolver> solver_;
   std::vector<std::unique_ptr<contact::ContactPair>> outer_pairs_, inner_pairs_, cage_pairs_;
+  std::unique_ptr<CagePocketGuide> cage_guide_;
   std::unique_ptr<RigidPart> cage_;
   std::unique_ptr<TiedNodes> tie_;
   std::unique_ptr<HybridRollers> hybrid_;
