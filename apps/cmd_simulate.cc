@@ -1,7 +1,7 @@
 // spall simulate: runs the explicit FE bearing model of a scene and writes the results.
 //
 //   spall simulate SCENE.toml [-o run.h5] [--csv accel.csv] [--set key=value]... [--resume]
-//                  [--stop-after-ms T] [--quiet]
+//                  [--stop-after-ms T] [--quiet] [--energy-ledger]
 //
 // HDF5 layout: docs/BEARING_MODEL.md ("Output file"). Progress goes to stderr only when stderr is
 // a terminal. With [solver] checkpoint_interval_s > 0 a checkpoint RUN.h5.ckpt is written every
@@ -27,6 +27,7 @@ struct Opts {
   bool resume = false;
   double stop_after_ms = -1.0;
   bool quiet = false;
+  bool energy_ledger = false;
 };
 
 int Run(const Opts& o) {
@@ -37,6 +38,7 @@ int Run(const Opts& o) {
   so.csv_path = o.csv;
   so.resume = o.resume;
   if (o.stop_after_ms >= 0) so.stop_after_s = o.stop_after_ms * 1e-3;
+  so.model.track_contributor_work = o.energy_ledger;
   const bool tty = ::isatty(STDERR_FILENO) && !o.quiet;
   if (tty)
     so.progress = [](const sim::SimulationProgress& p) {
@@ -60,6 +62,7 @@ int Run(const Opts& o) {
   const sim::SimulationSummary s = simulation.Run();
   if (tty) std::fprintf(stderr, "\n");
   std::printf("%s\n", s.BriefReport().c_str());
+  if (o.energy_ledger) std::printf("%s\n", solver::LedgerReport(s.ledger, 1 << 30).c_str());
   if (s.completed) {
     std::printf("wrote %s", o.output.c_str());
     if (!o.csv.empty()) std::printf(" and %s", o.csv.c_str());
@@ -84,6 +87,10 @@ spallkit::apps::Register reg(
                      o->stop_after_ms,
                      "Stop at this simulated time after writing OUTPUT.ckpt (split long runs)");
       sub.add_flag("--quiet", o->quiet, "No model description or progress");
+      sub.add_flag("--energy-ledger",
+                   o->energy_ledger,
+                   "Keep an energy account per contact pair and constraint and print it "
+                   "(slower; finds what breaks the energy balance)");
       return [o] { return Run(*o); };
     });
 

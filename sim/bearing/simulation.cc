@@ -187,6 +187,7 @@ SimulationSummary Simulation::Run() {
         1e9 * sum.wall_seconds / (static_cast<double>(sum.steps_this_run) * sum.elements);
   sum.energies = solver.energies();
   sum.energy_balance_error = sum.energies.BalanceError();
+  sum.ledger = solver.ContributorLedgers();
   sum.hourglass_to_internal =
       sum.energies.internal > 0 ? sum.energies.hourglass / sum.energies.internal : 0.0;
   if (const Recorder::Series* w = recorder_->Find("/cage/omega")) {
@@ -226,6 +227,14 @@ void Simulation::CheckEnergyBalance() const {
      << " ms exceeds solver.max_energy_error_percent = " << limit
      << "; the results would not be trustworthy and were not written (refine mesh.size_mm, "
         "lower operation.speed_rpm, or use model.fidelity = \"hybrid\")";
+  // With the work ledger: name the contributor whose books are furthest off.
+  const std::vector<solver::ContributorLedger> ledger = model_->solver().ContributorLedgers();
+  const auto worst =
+      std::max_element(ledger.begin(), ledger.end(), [](const auto& a, const auto& b) {
+        return std::abs(a.Created()) < std::abs(b.Created());
+      });
+  if (worst != ledger.end())
+    os << "; most energy created by '" << worst->name << "': " << worst->Created() << " J";
   throw NumericalError(os.str());
 }
 

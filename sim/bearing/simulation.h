@@ -59,6 +59,8 @@ struct SimulationSummary {
   double hourglass_to_internal = 0.0;
   // Cage after the ramp (samples with t >= 2 ramp_s, or the last half if that is empty).
   double cage_omega_mean = 0.0, cage_omega_theory = 0.0, cage_slip_mean = 0.0;
+  // Per contact pair / constraint energy accounts (options.model.track_contributor_work only).
+  std::vector<solver::ContributorLedger> ledger;
   std::string BriefReport() const;
 };
 

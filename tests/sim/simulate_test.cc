@@ -444,11 +444,14 @@ TEST(SimulateTest, RunPastTheEnergyErrorLimitStopsAndWritesNothing) {
   std::vector<std::string> strict = sets;
   strict.push_back("solver.max_energy_error_percent=" +
                    std::to_string(0.1 * 100.0 * ok.energy_balance_error));
+  o.model.track_contributor_work = true;  // the message then names the worst account
   try {
     Simulation(LoadScene(Scenes() + "paper-verification.toml", strict), o).Run();
     FAIL() << "expected a NumericalError";
   } catch (const spallkit::NumericalError& e) {
     EXPECT_NE(std::string(e.what()).find("solver.max_energy_error_percent"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("most energy created by '"), std::string::npos)
         << e.what();
   }
   std::ifstream written(o.output_path);
@@ -483,8 +486,17 @@ TEST(SimulateCliTest, PrintsTheSummaryAndWritesFiles) {
     EXPECT_NE(out.find(key), std::string::npos) << key << "\n" << out;
   EXPECT_NO_THROW(dsp::ReadHdf5Record(h5));
   EXPECT_NO_THROW(dsp::ReadCsvRecord(csv));
+  EXPECT_EQ(out.find("energy ledger"), std::string::npos) << out;  // only when asked
   std::remove(h5.c_str());
   std::remove(csv.c_str());
+
+  const std::string ledger = RunCli(
+      "simulate " + Scenes() + "paper-verification.toml --quiet --energy-ledger -o " + h5 + sets,
+      &code);
+  EXPECT_EQ(code, 0) << ledger;
+  EXPECT_NE(ledger.find("energy ledger"), std::string::npos) << ledger;
+  EXPECT_NE(ledger.find("roller0.surface/outer_ring.raceway"), std::string::npos) << ledger;
+  std::remove(h5.c_str());
 
   const std::string bad = RunCli(
       "simulate " + Scenes() + "paper-verification.toml -o " + h5 + " --set mesh.sise_mm=1", &code);
