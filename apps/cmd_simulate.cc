@@ -58,6 +58,8 @@ int Run(const Opts& o) {
     };
   sim::Simulation simulation(scene, so);
   if (!o.quiet) std::printf("%s\n", simulation.model().Describe().c_str());
+  for (const std::string& w : simulation.model().Warnings())
+    std::fprintf(stderr, "spall: warning: %s\n", w.c_str());
   std::fflush(stdout);
   const sim::SimulationSummary s = simulation.Run();
   if (tty) std::fprintf(stderr, "\n");

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "core/error.h"
@@ -270,6 +271,36 @@ double BearingModel::TheoreticalCageSpeed(double t) const {
   const BearingGeometry& b = scene_.geometry.bearing;
   const double gamma = b.element_diameter_m * std::cos(b.contact_angle_rad) / b.pitch_diameter_m;
   return 0.5 * speed_(t) * (1.0 - gamma);
+}
+
+std::vector<std::string> BearingModel::Warnings() const {
+  std::vector<std::string> out;
+  if (hybrid_) return out;  // exact circles: no facets
+  const SceneFriction& f = scene_.friction;
+  const double mu = f.decay_s_m > 0.0 ? f.mu_dynamic : f.mu_static;
+  if (!(mu > 0.0)) return out;  // frictionless: nothing drives the rollers anyway
+  // Rim facets of the healthy rollers (a notched roller's surface has extra notch nodes).
+  int facets = 0;
+  for (int j = 0; j < num_rollers_; ++j) {
+    bool defective = false;
+    for (const Defect& d : scene_.defects) defective = defective || d.roller == j;
+    if (defective) continue;
+    const auto it = mesh_.mesh.curves.find("roller" + std::to_string(j) + ".surface");
+    if (it != mesh_.mesh.curves.end()) facets = static_cast<int>(it->second.nodes.size());
+    break;
+  }
+  if (facets == 0 || mu * facets >= kRollingMinMuFacets) return out;
+  const double needed_spacing =
+      2.0 * std::numbers::pi * mesh_.roller_radius_m * mu / kRollingMinMuFacets;
+  std::ostringstream os;
+  os.precision(3);
+  os << "the FE rollers' rims have " << facets << " facets: at friction mu = " << mu
+     << " they may stand on their facets and slide instead of rolling (mu x facets = "
+     << mu * facets << " < " << kRollingMinMuFacets
+     << "; docs/BEARING_MODEL.md); refine mesh.contact_size_mm to <= " << needed_spacing * 1e3
+     << " or use model.fidelity = \"hybrid\"";
+  out.push_back(os.str());
+  return out;
 }
 
 std::string BearingModel::Describe() const {

@@ -117,6 +117,15 @@ class BearingModel {
   const std::vector<SensorChannel>& sensor_channels() const { return channels_; }
   // Parts, element/node counts, contact pairs, constraints: a few lines for logs.
   std::string Describe() const;
+  // One line per known way this scene's model will not represent the bearing (printed by spall
+  // simulate as warnings). Today: full-FE rollers locked on their rim facets. A polygonal roller
+  // between two polygonal races rolls over a vertex only if the traction can tip it; measured at
+  // the paper's load (docs/BEARING_MODEL.md): rim facets N = 40 (0.5 mm) lock at mu = 0.01
+  // (mu N = 0.4: cage 1-8 % of its speed) and roll at mu = 0.1; N = 80 (0.25 mm) rolls at
+  // mu = 0.01 (mu N = 0.8). Warns when the sliding mu (mu_dynamic with a decay, else mu_static)
+  // times N is below kRollingMinMuFacets.
+  std::vector<std::string> Warnings() const;
+  static constexpr double kRollingMinMuFacets = 0.8;
 
  private:
   Scene scene_;
