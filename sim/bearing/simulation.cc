@@ -212,9 +212,10 @@ SimulationSummary Simulation::Run() {
   return sum;
 }
 
-// A run whose energy books do not balance has gone wrong numerically (e.g. the full-FE section
-// above its speed range, docs/BEARING_MODEL.md): stop it instead of writing plausible-looking
-// signals. Energies below a millijoule (start of the ramp) are not judged.
+// A run whose energy books do not balance has gone wrong numerically (e.g. the full-FE section's
+// once-free cage, docs/BEARING_MODEL.md, "Speed range of the full-FE section"): stop it instead of
+// writing plausible-looking signals. Energies below a millijoule (start of the ramp) are not
+// judged. With the work ledger on, the message names the worst account.
 void Simulation::CheckEnergyBalance() const {
   const double limit = model_->scene().solver.max_energy_error_percent;
   if (limit <= 0.0) return;
