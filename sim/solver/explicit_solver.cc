@@ -20,7 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr int kNodeChunk = 1024;  // fixed node chunk: sums do not depend on the thread count
 constexpr int kRigidSums = 7;     // m, mx, my, mvx, mvy, m(x vy - y vx), m(x^2 + y^2)
 constexpr int kMinElementsPerThread = 10000;
-constexpr char kMagic[8] = {'S', 'P', 'K', 'C', 'K', 'P', 'T', '1'};
+constexpr char kMagic[8] = {'S', 'P', 'K', 'C', 'K', 'P', 'T', '2'};  // 2: initial_stored
 
 template <typename T>
 void Put(std::ostream& out, const T& v) {
@@ -88,14 +88,15 @@ bool SolverOptions::IsValid(std::string* error) const {
 
 double Energies::BalanceError() const {
   const double total = kinetic + internal + hourglass + contact + friction + damping;
-  const double err = std::abs(total - initial_kinetic - external);
+  const double err = std::abs(total - initial_kinetic - initial_stored - external);
   const double scale = Scale();
   return scale > 0.0 ? err / scale : 0.0;
 }
 
 double Energies::Scale() const {
   double scale = initial_kinetic;
-  for (double v : {kinetic, internal, hourglass, contact, friction, damping, external})
+  for (double v :
+       {kinetic, internal, hourglass, contact, friction, damping, external, initial_stored})
     scale = std::max(scale, std::abs(v));
   return scale;
 }
@@ -428,6 +429,10 @@ void ExplicitSolver::Step() {
     for (ForceContributor* c : contributors_) c->AddForces(state_, time_, dt);
   }
   if (relative) ReducePartRigidMotion();
+  if (step_ == 0) {  // forces at x^0: the contributors' initial stored energy
+    initial_stored_ = 0.0;
+    for (const ForceContributor* c : contributors_) initial_stored_ += c->StoredEnergy();
+  }
 
   // Remember v^(n-1/2) of constrained nodes (reaction work).
   auto remember = [&](int id) {
@@ -560,7 +565,7 @@ void ExplicitSolver::TrackedAddForces(double dt) {
   const size_t n = 1 + contributors_.size();
   if (ledger_force_.size() != n) {
     ledger_force_.assign(n, std::vector<double>(2 * nn, 0.0));
-    ledger_work_.assign(n, 0.0), ledger_edit_.assign(n, 0.0);
+    ledger_work_.assign(n, 0.0), ledger_edit_.assign(n, 0.0), ledger_initial_.assign(n, 0.0);
     ledger_scratch_.assign(2 * nn, 0.0);
   }
   auto kinetic = [&] {
@@ -578,6 +583,7 @@ void ExplicitSolver::TrackedAddForces(double dt) {
     const double k0 = kinetic();
     contributors_[c]->AddForces(state_, time_, dt);
     ledger_edit_[1 + c] += kinetic() - k0;
+    if (step_ == 0) ledger_initial_[1 + c] = contributors_[c]->StoredEnergy();
     std::vector<double>& f = ledger_force_[1 + c];
     for (size_t i = 0; i < nn; ++i) {
       f[i] = state_.fx[i] - ledger_scratch_[i];
@@ -612,6 +618,7 @@ std::vector<ContributorLedger> ExplicitSolver::ContributorLedgers() const {
     l.name = contributors_[c]->Name();
     l.work = ledger_work_[1 + c], l.velocity_edit = ledger_edit_[1 + c];
     l.stored = contributors_[c]->StoredEnergy();
+    l.initial_stored = ledger_initial_[1 + c];
     l.dissipated = contributors_[c]->DissipatedEnergy();
     l.external = contributors_[c]->ExternalWork();
     out.push_back(l);
@@ -660,6 +667,7 @@ Energies ExplicitSolver::energies() const {
         0.5 * rigid_bodies_[b].extra_mass *
         (rigid_states_[b].vx * rigid_states_[b].vx + rigid_states_[b].vy * rigid_states_[b].vy);
   e.initial_kinetic = initialized_ ? initial_kinetic_ : e.kinetic;
+  e.initial_stored = initial_stored_;
   e.internal = elements_.InternalEnergy();
   e.hourglass = elements_.HourglassEnergy();
   e.damping = damping_work_ + elements_.DampingEnergy();
@@ -708,7 +716,7 @@ void ExplicitSolver::SaveCheckpoint(const std::string& path) const {
   Put(out, time_), Put(out, dt_), Put(out, dt_prev_), Put(out, next_output_time_);
   Put(out, step_), Put(out, last_output_step_);
   Put(out, damping_work_), Put(out, reaction_work_), Put(out, load_work_),
-      Put(out, initial_kinetic_);
+      Put(out, initial_kinetic_), Put(out, initial_stored_);
   for (const auto* v : {&state_.x, &state_.y, &state_.vx, &state_.vy}) PutVec(out, *v);
   elements_.Save(out);
   for (const auto& st : rigid_states_) Put(out, st);
@@ -749,7 +757,7 @@ void ExplicitSolver::LoadCheckpoint(const std::string& path) {
     next_output_time_ = Get<double>(in);
     step_ = Get<long>(in), last_output_step_ = Get<long>(in);
     damping_work_ = Get<double>(in), reaction_work_ = Get<double>(in), load_work_ = Get<double>(in);
-    initial_kinetic_ = Get<double>(in);
+    initial_kinetic_ = Get<double>(in), initial_stored_ = Get<double>(in);
     GetVec(in, &state_.x, "x"), GetVec(in, &state_.y, "y"), GetVec(in, &state_.vx, "vx"),
         GetVec(in, &state_.vy, "vy");
     elements_.Load(in);

@@ -106,6 +106,9 @@ struct SolverOptions {
 struct Energies {
   double kinetic = 0.0;  // at v^(n+1/2), including rigid-body extra masses
   double initial_kinetic = 0.0;
+  // Contributors' stored energy at the first step: initial overlaps (e.g. a roller vertex that
+  // starts inside a race facet's sag) start with penalty energy, part of the initial energy.
+  double initial_stored = 0.0;
   double internal = 0.0;  // elastic strain energy (elements)
   double hourglass = 0.0;
   double contact = 0.0;         // stored by contributors (penalty springs)
@@ -113,7 +116,8 @@ struct Energies {
   double damping = 0.0;         // mass + stiffness damping dissipation
   double external = 0.0;        // applied loads + prescribed-motion (reaction) work
   double external_loads = 0.0;  //   of which applied loads (rigid-body forces + contributors)
-  // |E_kin + E_int + E_hg + E_contact + E_fric + E_damp - E_kin(0) - W_ext| / Scale().
+  // |E_kin + E_int + E_hg + E_contact + E_fric + E_damp - E_kin(0) - E_contact(0) - W_ext| /
+  // Scale().
   double BalanceError() const;
   // The largest energy term's magnitude (initial kinetic included), J: BalanceError's scale.
   double Scale() const;
@@ -124,13 +128,16 @@ struct Energies {
 // central-difference rule as the balance), `velocity_edit` the kinetic energy its direct edits of
 // velocities changed (projections, ties). Its own books say the energy went into `stored`, was
 // `dissipated` or came in as `external` work; what they do not explain is Created():
-//   Created = work + velocity_edit + stored + dissipated - external   (> 0: energy created).
+//   Created = work + velocity_edit + (stored - initial_stored) + dissipated - external
+// (> 0: energy created; initial_stored: its stored energy at the first step).
 // For the elements stored = internal + hourglass and dissipated = stiffness damping.
 struct ContributorLedger {
   std::string name;
   double work = 0.0, velocity_edit = 0.0;
-  double stored = 0.0, dissipated = 0.0, external = 0.0;
-  double Created() const { return work + velocity_edit + stored + dissipated - external; }
+  double stored = 0.0, initial_stored = 0.0, dissipated = 0.0, external = 0.0;
+  double Created() const {
+    return work + velocity_edit + stored - initial_stored + dissipated - external;
+  }
 };
 
 // The ledgers sorted by |Created()|, largest first, as a table of at most max_rows rows plus the
@@ -238,13 +245,14 @@ class ExplicitSolver {
   int threads_ = 1;
   double mass_damping_ = 0.0;  // D_s, 1/s
   double damping_work_ = 0.0, reaction_work_ = 0.0, load_work_ = 0.0, initial_kinetic_ = 0.0;
+  double initial_stored_ = 0.0;  // Energies::initial_stored
 
   // Work ledger (track_contributor_work): forces of the elements [0] and of each contributor
   // [1 + c] at step n (x then y, 2 x nodes each), velocities after the contributors, scratch.
   void TrackedAddForces(double dt);
   void BookTrackedWork(double dt_avg);
   std::vector<std::vector<double>> ledger_force_;
-  std::vector<double> ledger_work_, ledger_edit_;
+  std::vector<double> ledger_work_, ledger_edit_, ledger_initial_;
   std::vector<double> ledger_vx_, ledger_vy_, ledger_scratch_;
 };
 
