@@ -563,10 +563,19 @@ void ExplicitSolver::MaybeOutput(bool force) {
 void ExplicitSolver::TrackedAddForces(double dt) {
   const size_t nn = state_.size();
   const size_t n = 1 + contributors_.size();
-  if (ledger_force_.size() != n) {
+  const bool first = ledger_force_.size() != n;  // t = 0, or the first step after a resume
+  if (first) {
     ledger_force_.assign(n, std::vector<double>(2 * nn, 0.0));
-    ledger_work_.assign(n, 0.0), ledger_edit_.assign(n, 0.0), ledger_initial_.assign(n, 0.0);
+    ledger_work_.assign(n, 0.0), ledger_edit_.assign(n, 0.0);
+    ledger_base_.assign(n, ContributorLedger{});
     ledger_scratch_.assign(2 * nn, 0.0);
+    // Baselines: the accounts start here (stored energy at x^n; cumulative terms so far).
+    ledger_base_[0].stored = elements_.InternalEnergy() + elements_.HourglassEnergy();
+    ledger_base_[0].dissipated = elements_.DampingEnergy();
+    for (size_t c = 0; c < contributors_.size(); ++c) {
+      ledger_base_[1 + c].dissipated = contributors_[c]->DissipatedEnergy();
+      ledger_base_[1 + c].external = contributors_[c]->ExternalWork();
+    }
   }
   auto kinetic = [&] {
     double k = 0.0;
@@ -583,7 +592,7 @@ void ExplicitSolver::TrackedAddForces(double dt) {
     const double k0 = kinetic();
     contributors_[c]->AddForces(state_, time_, dt);
     ledger_edit_[1 + c] += kinetic() - k0;
-    if (step_ == 0) ledger_initial_[1 + c] = contributors_[c]->StoredEnergy();
+    if (first) ledger_base_[1 + c].stored = contributors_[c]->StoredEnergy();
     std::vector<double>& f = ledger_force_[1 + c];
     for (size_t i = 0; i < nn; ++i) {
       f[i] = state_.fx[i] - ledger_scratch_[i];
@@ -607,21 +616,24 @@ void ExplicitSolver::BookTrackedWork(double dt_avg) {
 std::vector<ContributorLedger> ExplicitSolver::ContributorLedgers() const {
   std::vector<ContributorLedger> out;
   if (ledger_work_.empty()) return out;
-  ContributorLedger el;
-  el.name = "elements";
-  el.work = ledger_work_[0];
-  el.stored = elements_.InternalEnergy() + elements_.HourglassEnergy();
-  el.dissipated = elements_.DampingEnergy();
-  out.push_back(el);
+  auto account =
+      [&](size_t k, std::string name, double stored, double dissipated, double external) {
+        ContributorLedger l;
+        l.name = std::move(name);
+        l.work = ledger_work_[k], l.velocity_edit = ledger_edit_[k];
+        l.stored = stored, l.initial_stored = ledger_base_[k].stored;
+        l.dissipated = dissipated - ledger_base_[k].dissipated;
+        l.external = external - ledger_base_[k].external;
+        out.push_back(l);
+      };
+  account(0,
+          "elements",
+          elements_.InternalEnergy() + elements_.HourglassEnergy(),
+          elements_.DampingEnergy(),
+          0.0);
   for (size_t c = 0; c < contributors_.size(); ++c) {
-    ContributorLedger l;
-    l.name = contributors_[c]->Name();
-    l.work = ledger_work_[1 + c], l.velocity_edit = ledger_edit_[1 + c];
-    l.stored = contributors_[c]->StoredEnergy();
-    l.initial_stored = ledger_initial_[1 + c];
-    l.dissipated = contributors_[c]->DissipatedEnergy();
-    l.external = contributors_[c]->ExternalWork();
-    out.push_back(l);
+    const ForceContributor* f = contributors_[c];
+    account(1 + c, f->Name(), f->StoredEnergy(), f->DissipatedEnergy(), f->ExternalWork());
   }
   return out;
 }

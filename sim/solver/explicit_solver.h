@@ -123,13 +123,15 @@ struct Energies {
   double Scale() const;
 };
 
-// One contributor's (or the elements') energy account, cumulative since t = 0 (J). `work` is the
-// work its forces did on the nodes, sum_n f^n . (v^(n-1/2) + v^(n+1/2)) dt_avg / 2 (the same
+// One contributor's (or the elements') energy account since the ledger started (t = 0, or the
+// first step after a resume from a checkpoint; the ledger itself is not checkpointed), J. `work` is
+// the work its forces did on the nodes, sum_n f^n . (v^(n-1/2) + v^(n+1/2)) dt_avg / 2 (the same
 // central-difference rule as the balance), `velocity_edit` the kinetic energy its direct edits of
 // velocities changed (projections, ties). Its own books say the energy went into `stored`, was
 // `dissipated` or came in as `external` work; what they do not explain is Created():
 //   Created = work + velocity_edit + (stored - initial_stored) + dissipated - external
-// (> 0: energy created; initial_stored: its stored energy at the first step).
+// (> 0: energy created; initial_stored: its stored energy when the ledger started; dissipated and
+// external are counted from then on too).
 // For the elements stored = internal + hourglass and dissipated = stiffness damping.
 struct ContributorLedger {
   std::string name;
@@ -252,7 +254,8 @@ class ExplicitSolver {
   void TrackedAddForces(double dt);
   void BookTrackedWork(double dt_avg);
   std::vector<std::vector<double>> ledger_force_;
-  std::vector<double> ledger_work_, ledger_edit_, ledger_initial_;
+  std::vector<double> ledger_work_, ledger_edit_;
+  std::vector<ContributorLedger> ledger_base_;  // accounts when the ledger started
   std::vector<double> ledger_vx_, ledger_vy_, ledger_scratch_;
 };
 

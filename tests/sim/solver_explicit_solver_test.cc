@@ -142,6 +142,23 @@ class PointForce : public ForceContributor {
   double x_prev_ = 0.0, work_ = 0.0;
 };
 
+// A spring (stiffness k) pulling one node back to where it started along x; books 1/2 k dx^2.
+class Tether : public ForceContributor {
+ public:
+  Tether(int node, double x0, double k) : node_(node), x0_(x0), k_(k) {}
+  void AddForces(fe::NodalState& s, double, double) override {
+    const double d = s.x[node_] - x0_;
+    s.fx[node_] -= k_ * d;
+    stored_ = 0.5 * k_ * d * d;
+  }
+  double StoredEnergy() const override { return stored_; }
+  std::string Name() const override { return "tether"; }
+
+ private:
+  int node_;
+  double x0_, k_, stored_ = 0.0;
+};
+
 TEST(ExplicitSolver, WorkLedgerFindsTheContributorThatDoesNotBookItsWork) {
   fe::DiscSpec d;
   d.radius = 0.01, d.n_core = 3, d.n_radial = 2;
@@ -153,12 +170,14 @@ TEST(ExplicitSolver, WorkLedgerFindsTheContributorThatDoesNotBookItsWork) {
   ExplicitSolver s(mesh, {sec}, opt);
   const int node = mesh.node_sets.at("d.center")[0];
   PointForce honest(node, 400.0, true), unbooked(node, 200.0, false);
+  Tether tether0(node, mesh.x[node], 2e5);
   s.AddContributor(&honest);
   s.AddContributor(&unbooked);
+  s.AddContributor(&tether0);
   s.Run(2e-4);
   const double dx = s.state().x[node] - mesh.x[node];
   const auto ledgers = s.ContributorLedgers();
-  ASSERT_EQ(ledgers.size(), 3u);
+  ASSERT_EQ(ledgers.size(), 4u);
   EXPECT_EQ(ledgers[0].name, "elements");
   EXPECT_EQ(ledgers[2].name, "unbooked");
   const double w = 200.0 * dx;
@@ -172,6 +191,28 @@ TEST(ExplicitSolver, WorkLedgerFindsTheContributorThatDoesNotBookItsWork) {
   EXPECT_NEAR(created, e.BalanceError() * e.Scale(), 0.02 * w);
   const std::string report = LedgerReport(ledgers);
   EXPECT_EQ(report.find("unbooked"), report.find("\n  ") + 3) << report;  // listed first
+  // A ledger started after a resume counts from the resume point (baselines taken there).
+  const std::string ckpt = ::testing::TempDir() + "spallkit_ledger.ckpt";
+  s.SaveCheckpoint(ckpt);
+  ExplicitSolver resumed(mesh, {sec}, opt);
+  PointForce honest2(node, 400.0, true), unbooked2(node, 200.0, false);
+  // The spring is stretched at the resume point: its account starts from that stored energy.
+  Tether tether(node, mesh.x[node], 2e5);
+  resumed.AddContributor(&honest2);
+  resumed.AddContributor(&unbooked2);
+  resumed.AddContributor(&tether);
+  resumed.LoadCheckpoint(ckpt);
+  std::remove(ckpt.c_str());
+  const double x_resume = resumed.state().x[node];
+  resumed.Run(4e-4);
+  const double w2 = 200.0 * (resumed.state().x[node] - x_resume);
+  const auto after = resumed.ContributorLedgers();
+  ASSERT_EQ(after.size(), 4u);
+  EXPECT_GT(after[3].initial_stored, 0.1 * w2);  // stretched when the ledger started
+  EXPECT_NEAR(after[3].Created(), 0.0, 0.02 * w2);
+  EXPECT_NEAR(after[2].Created(), w2, 0.02 * w2);
+  EXPECT_NEAR(after[1].Created(), 0.0, 0.02 * w2);
+  EXPECT_NEAR(after[0].Created(), 0.0, 1e-3 * w2);
   // Off by default: no ledgers.
   ExplicitSolver plain(mesh, {sec});
   plain.Run(1e-5);
