@@ -226,8 +226,8 @@ void Simulation::CheckEnergyBalance() const {
   os.precision(3);
   os << "simulate: energy balance error " << error << " % at t = " << 1e3 * model_->solver().time()
      << " ms exceeds solver.max_energy_error_percent = " << limit
-     << "; the results would not be trustworthy and were not written (refine mesh.size_mm, "
-        "lower operation.speed_rpm, or use model.fidelity = \"hybrid\")";
+     << "; the results would not be trustworthy and were not written (spall simulate "
+        "--energy-ledger names the contact pair or constraint that breaks the balance)";
   // With the work ledger: name the contributor whose books are furthest off.
   const std::vector<solver::ContributorLedger> ledger = model_->solver().ContributorLedgers();
   const auto worst =
