@@ -119,6 +119,13 @@ bool CageGuideOptions::IsValid(std::string* error) const {
   return false;
 }
 
+double CageGuideOptions::RadialForce(double radial, double* energy) const {
+  const double over = std::abs(radial) - radial_play_m;
+  if (over <= 0.0) return 0.0;
+  *energy += 0.5 * stiffness_n_per_m * over * over;
+  return (radial > 0.0 ? -1.0 : 1.0) * stiffness_n_per_m * over;
+}
+
 CagePocketGuide::CagePocketGuide(std::string name,
                                  std::vector<std::vector<int>> rollers,
                                  std::vector<std::vector<int>> pockets,
@@ -164,15 +171,11 @@ void CagePocketGuide::AddForces(fe::NodalState& s, double /*t*/, double /*dt*/) 
     const double lx = pocket.x - cage.x, ly = pocket.y - cage.y, l = std::hypot(lx, ly);
     const double ex = lx / l, ey = ly / l;
     const double dx = roller.x - cage.x, dy = roller.y - cage.y;
-    const double radial = dx * ex + dy * ey - pitch_radius_;
-    const double over = std::abs(radial) - options_.radial_play_m;
-    if (over <= 0.0) continue;
-    const double q = options_.stiffness_n_per_m * over;
-    potential_ += 0.5 * q * over;
-    force_[j] = q;
     // Force on the roller, back towards the play band along e (at its mass centre).
-    const double sgn = radial > 0.0 ? -1.0 : 1.0;
-    const double fx = sgn * q * ex, fy = sgn * q * ey;
+    const double f = options_.RadialForce(dx * ex + dy * ey - pitch_radius_, &potential_);
+    if (f == 0.0) continue;
+    force_[j] = std::abs(f);
+    const double fx = f * ex, fy = f * ey;
     for (int id : rollers_[j]) {
       const double w = s.mass[id] / roller.m;
       s.fx[id] += w * fx, s.fy[id] += w * fy;

@@ -74,6 +74,9 @@ struct CageGuideOptions {
   double stiffness_n_per_m = 2e8;  // whole section
 
   bool IsValid(std::string* error) const;
+  // Force on the roller along the pocket's centre line (N, towards the play band) for a roller
+  // centre `radial` m off the pitch radius; adds the spring's energy to *energy.
+  double RadialForce(double radial, double* energy) const;
 };
 
 // The FE model's cage guide: spring forces between each roller's mass centre (on its nodes, in

@@ -602,13 +602,11 @@ void HybridRollers::AddForces(fe::NodalState& state, double t, double dt) {
     {
       const double ex = std::cos(psi), ey = std::sin(psi);
       const double radial = (cx - cage_.x) * ex + (cy - cage_.y) * ey - pitch_radius_;
-      const double over = std::abs(radial) - cage_guide_.radial_play_m;
-      if (over > 0) {
-        const double sgn = radial > 0 ? -1.0 : 1.0;  // force on the roller, along e
-        const double kc = cage_guide_.stiffness_n_per_m;
-        potential += 0.5 * kc * over * over;
-        const double q = kc * over;
-        const double fx = sgn * q * ex, fy = sgn * q * ey;
+      const double q_signed =
+          cage_guide_.RadialForce(radial, &potential);  // on the roller, along e
+      if (q_signed != 0.0) {
+        const double q = std::abs(q_signed);
+        const double fx = q_signed * ex, fy = q_signed * ey;
         fx_[j] += fx, fy_[j] += fy;
         torque_[j] += (cx - rollers_[j].x) * fy - (cy - rollers_[j].y) * fx;
         apply_counter(2, cx, cy, -fx, -fy);
