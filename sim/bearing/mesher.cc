@@ -1,6 +1,7 @@
 #include "sim/bearing/mesher.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -554,6 +555,38 @@ MeshQualityReport MeasureMeshQuality(const fe::Mesh& mesh) {
   r.total_elements = mesh.num_elements();
   r.total_nodes = mesh.num_nodes();
   return r;
+}
+
+MeshQualityReport MeshQualityReport::Merged() const {
+  MeshQualityReport out;
+  out.total_elements = total_elements;
+  out.total_nodes = total_nodes;
+  std::vector<std::string> stems;   // per merged entry: name without its trailing number
+  std::vector<std::string> first;   // per merged entry: trailing number of the first part
+  for (const PartQuality& p : parts) {
+    size_t cut = p.part.size();
+    while (cut > 0 && std::isdigit(static_cast<unsigned char>(p.part[cut - 1]))) --cut;
+    const std::string stem = p.part.substr(0, cut), number = p.part.substr(cut);
+    size_t k = 0;
+    while (k < stems.size() && (stems[k] != stem || number.empty() || first[k].empty())) ++k;
+    if (k == stems.size()) {
+      stems.push_back(stem);
+      first.push_back(number);
+      out.parts.push_back(p);
+      continue;
+    }
+    PartQuality& q = out.parts[k];
+    q.part = stem + first[k] + ".." + number;
+    q.elements += p.elements;
+    q.nodes += p.nodes;
+    q.area_m2 += p.area_m2;
+    q.min_angle_deg = std::min(q.min_angle_deg, p.min_angle_deg);
+    q.max_angle_deg = std::max(q.max_angle_deg, p.max_angle_deg);
+    q.max_aspect_ratio = std::max(q.max_aspect_ratio, p.max_aspect_ratio);
+    q.max_skew_deg = std::max(q.max_skew_deg, p.max_skew_deg);
+    q.min_element_area_m2 = std::min(q.min_element_area_m2, p.min_element_area_m2);
+  }
+  return out;
 }
 
 std::string MeshQualityReport::Report() const {

@@ -76,6 +76,10 @@ struct MeshQualityReport {
   int total_elements = 0;
   int total_nodes = 0;
   std::string Report() const;  // one line per part plus totals
+  // Parts whose names differ only in a trailing number (roller0 .. roller12) merged into one
+  // entry named "roller0..12": summed counts and area, worst angles, aspect ratio and skew. The
+  // full model's 17 parts then print as 6 lines (spall simulate's model description).
+  MeshQualityReport Merged() const;
 };
 
 MeshQualityReport MeasureMeshQuality(const fe::Mesh& mesh);

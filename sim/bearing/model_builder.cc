@@ -65,6 +65,7 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
   const bool hybrid = scene_.model.fidelity == "hybrid";
   num_rollers_ = scene_.geometry.bearing.num_elements;
   mesh_ = hybrid ? MeshBearingHousing(scene_) : MeshBearing(scene_);
+  mesh_quality_ = MeasureMeshQuality(mesh_.mesh);
   const fe::Mesh& mesh = mesh_.mesh;
   const double t = scene_.geometry.thickness_m;
 
@@ -318,22 +319,25 @@ std::string BearingModel::Describe() const {
        << "\ncontact stable step: roller side " << h.roller_time_step() * 1e9 << " ns, ring side "
        << h.ring_time_step() * 1e9 << " ns (raceway kernel mass " << h.ring_contact_mass() * 1e6
        << " mg), x 0.8";
-    for (const SensorChannel& c : channels_)
-      os << "\nsensor " << c.sensor << " " << c.direction << ": node " << c.node << " ("
-         << c.distance_m * 1e3 << " mm from the point)";
-    return os.str();
+  } else {
+    os << "model: fe, " << m.num_elements() << " elements, " << m.num_nodes() << " nodes, "
+       << m.num_parts() << " parts; "
+       << outer_pairs_.size() + inner_pairs_.size() + cage_pairs_.size()
+       << " contact pairs (penalty f = " << options_.race_penalty_scale << " races, "
+       << options_.cage_penalty_scale << " cage, damping " << options_.contact_damping_ratio
+       << "); cage rigid (" << cage_->nodes().size() << " nodes, roller-guided: radial play +-"
+       << options_.cage_guide.radial_play_m * 1e3 << " mm); ring-adapter tie "
+       << tie_->num_pairs() << " node pairs";
   }
-  os << "model: fe, " << m.num_elements() << " elements, " << m.num_nodes() << " nodes, "
-     << m.num_parts() << " parts; "
-     << outer_pairs_.size() + inner_pairs_.size() + cage_pairs_.size()
-     << " contact pairs (penalty f = " << options_.race_penalty_scale << " races, "
-     << options_.cage_penalty_scale << " cage, damping " << options_.contact_damping_ratio
-     << "); cage rigid (" << cage_->nodes().size() << " nodes, roller-guided: radial play +-"
-     << options_.cage_guide.radial_play_m * 1e3 << " mm); ring-adapter tie " << tie_->num_pairs()
-     << " node pairs";
   for (const SensorChannel& c : channels_)
     os << "\nsensor " << c.sensor << " " << c.direction << ": node " << c.node << " ("
        << c.distance_m * 1e3 << " mm from the point)";
+  // Angles are interior angles, aspect = longest / shortest edge, skew = largest |angle - 90|.
+  std::string quality = mesh_quality_.Merged().Report();
+  if (!quality.empty() && quality.back() == '\n') quality.pop_back();
+  os << "\nmesh quality:";
+  std::istringstream lines(quality);
+  for (std::string line; std::getline(lines, line);) os << "\n  " << line;
   return os.str();
 }
 

@@ -115,7 +115,10 @@ class BearingModel {
   double TheoreticalCageSpeed(double t) const;
 
   const std::vector<SensorChannel>& sensor_channels() const { return channels_; }
-  // Parts, element/node counts, contact pairs, constraints: a few lines for logs.
+  // Element quality per mesh part, measured once when the model is built.
+  const MeshQualityReport& mesh_quality() const { return mesh_quality_; }
+  // Parts, element/node counts, contact pairs, constraints and the mesh quality (rollers merged
+  // into one line): a few lines for logs.
   std::string Describe() const;
   // One line per known way this scene's model will not represent the bearing (printed by spall
   // simulate as warnings). Today: full-FE rollers locked on their rim facets. A polygonal roller
@@ -131,6 +134,7 @@ class BearingModel {
   Scene scene_;
   BearingModelOptions options_;
   BearingMesh mesh_;
+  MeshQualityReport mesh_quality_;
   std::unique_ptr<solver::ExplicitSolver> solver_;
   std::vector<std::unique_ptr<contact::ContactPair>> outer_pairs_, inner_pairs_, cage_pairs_;
   std::unique_ptr<CagePocketGuide> cage_guide_;

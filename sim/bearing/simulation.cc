@@ -246,6 +246,7 @@ void Simulation::WriteOutputs(const SimulationSummary& summary) const {
       h5::File f = h5::File::Create(out.temp_path());
       f.SetAttribute("/", "spallkit_version", SPALLKIT_VERSION);
       f.SetAttribute("/", "scene", model_->scene().effective_toml);
+      f.SetAttribute("/", "mesh_quality", model_->mesh_quality().Report());
       f.SetAttribute("/", "steps", static_cast<double>(summary.steps));
       f.SetAttribute("/", "energy_balance_error", summary.energy_balance_error);
       recorder_->Write(&f);

@@ -106,6 +106,29 @@ TEST(BearingMesh, PaperMeshHasValidElementsAndReportsQuality) {
 // L_e / c): the rollers' O-grid must not hold elements much smaller than the contact spacing
 // (the old layout's core-corner elements had 0.27 contact sizes and set the step), and the
 // adapter's seat corners must stay above the rollers.
+TEST(BearingMesh, MergedQualityReportFoldsTheRollersIntoOneLine) {
+  const MeshQualityReport q = MeasureMeshQuality(MeshBearing(PaperScene({"mesh.size_mm=0.5"})).mesh);
+  const MeshQualityReport merged = q.Merged();
+  ASSERT_EQ(merged.parts.size(), 5u);  // outer_ring, inner_ring, cage, roller0..12, adapter
+  const PartQuality& rollers = Part(merged, "roller0..12");
+  int elements = 0;
+  double min_angle = 180, max_aspect = 0, area = 0;
+  for (int j = 0; j < 13; ++j) {
+    const PartQuality& r = Part(q, "roller" + std::to_string(j));
+    elements += r.elements;
+    area += r.area_m2;
+    min_angle = std::min(min_angle, r.min_angle_deg);
+    max_aspect = std::max(max_aspect, r.max_aspect_ratio);
+  }
+  EXPECT_EQ(rollers.elements, elements);
+  EXPECT_NEAR(rollers.area_m2, area, 1e-12);
+  EXPECT_EQ(rollers.min_angle_deg, min_angle);
+  EXPECT_EQ(rollers.max_aspect_ratio, max_aspect);
+  EXPECT_EQ(Part(merged, "adapter").elements, Part(q, "adapter").elements);
+  EXPECT_EQ(merged.total_elements, q.total_elements);
+  EXPECT_NE(merged.Report().find("roller0..12: "), std::string::npos) << merged.Report();
+}
+
 TEST(BearingMesh, PaperMeshSmallestElementsAreNotFarBelowTheContactSize) {
   const Scene s = PaperScene({});
   const fe::Mesh& m = MeshBearing(s).mesh;

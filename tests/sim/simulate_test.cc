@@ -283,6 +283,7 @@ TEST(SimulateTest, WritesTheDocumentedHdf5Layout) {
   h5::File f = h5::File::OpenReadOnly(o.output_path);
   EXPECT_EQ(f.ReadStringAttribute("/", "scene").value(), scene.effective_toml);
   EXPECT_EQ(f.ReadStringAttribute("/", "spallkit_version").value(), SPALLKIT_VERSION);
+  EXPECT_EQ(f.ReadStringAttribute("/", "mesh_quality").value(), sim.model().mesh_quality().Report());
   const int n = 11;  // 0.2 ms at 50 kHz, both ends
   const int z = 13;
   std::vector<size_t> dims;
@@ -482,7 +483,10 @@ TEST(SimulateCliTest, PrintsTheSummaryAndWritesFiles) {
                           "wall time",
                           "ns per element-cycle",
                           "energy balance error",
-                          "hourglass/internal"})
+                          "hourglass/internal",
+                          "mesh quality:",
+                          "  roller0..12: ",
+                          "max skew"})
     EXPECT_NE(out.find(key), std::string::npos) << key << "\n" << out;
   EXPECT_NO_THROW(dsp::ReadHdf5Record(h5));
   EXPECT_NO_THROW(dsp::ReadCsvRecord(csv));
