@@ -561,8 +561,8 @@ MeshQualityReport MeshQualityReport::Merged() const {
   MeshQualityReport out;
   out.total_elements = total_elements;
   out.total_nodes = total_nodes;
-  std::vector<std::string> stems;   // per merged entry: name without its trailing number
-  std::vector<std::string> first;   // per merged entry: trailing number of the first part
+  std::vector<std::string> stems;  // per merged entry: name without its trailing number
+  std::vector<std::string> first;  // per merged entry: trailing number of the first part
   for (const PartQuality& p : parts) {
     size_t cut = p.part.size();
     while (cut > 0 && std::isdigit(static_cast<unsigned char>(p.part[cut - 1]))) --cut;

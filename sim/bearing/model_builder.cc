@@ -147,8 +147,27 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
       return std::make_unique<contact::ContactPair>(
           contact::MakeContactPair(mesh, surf, master, bulk, t, o));
     };
-    outer_pairs_.push_back(make("outer_ring.raceway", race));
-    inner_pairs_.push_back(make("inner_ring.raceway", race));
+    if (options_.curved_race_contact) {
+      // Rim segments on the roller's circle and the raceways' segments become arcs; the spall's
+      // walls and bottom stay straight, so its corners touch as vertices.
+      const double cx = mesh_.pitch_radius_m * std::cos(mesh_.roller_angles_rad[j]);
+      const double cy = mesh_.pitch_radius_m * std::sin(mesh_.roller_angles_rad[j]);
+      const double tol = 1e-6 * mesh_.roller_radius_m;
+      auto make_curved = [&](const std::string& master, double race_radius) {
+        contact::ContactSurface s = contact::MakeSurface(mesh, surf, bulk, t);
+        contact::ContactSurface m = contact::MakeSurface(mesh, master, bulk, t);
+        contact::MarkCircularArcs(
+            &s, mesh.x.data(), mesh.y.data(), cx, cy, mesh_.roller_radius_m, tol);
+        contact::MarkCircularArcs(&m, mesh.x.data(), mesh.y.data(), 0, 0, race_radius, tol);
+        return std::make_unique<contact::ContactPair>(
+            surf + "/" + master, std::move(s), std::move(m), race);
+      };
+      outer_pairs_.push_back(make_curved("outer_ring.raceway", mesh_.outer_raceway_radius_m));
+      inner_pairs_.push_back(make_curved("inner_ring.raceway", mesh_.inner_raceway_radius_m));
+    } else {
+      outer_pairs_.push_back(make("outer_ring.raceway", race));
+      inner_pairs_.push_back(make("inner_ring.raceway", race));
+    }
     // Pocket j lies between web j (its leading wall) and web j-1 (its trailing wall). The
     // masters are the webs' closed outlines, not the open walls: a node past the free end of an
     // open wall projects onto the end with the wall's normal and counts as penetrating while
@@ -326,8 +345,8 @@ std::string BearingModel::Describe() const {
        << " contact pairs (penalty f = " << options_.race_penalty_scale << " races, "
        << options_.cage_penalty_scale << " cage, damping " << options_.contact_damping_ratio
        << "); cage rigid (" << cage_->nodes().size() << " nodes, roller-guided: radial play +-"
-       << options_.cage_guide.radial_play_m * 1e3 << " mm); ring-adapter tie "
-       << tie_->num_pairs() << " node pairs";
+       << options_.cage_guide.radial_play_m * 1e3 << " mm); ring-adapter tie " << tie_->num_pairs()
+       << " node pairs";
   }
   for (const SensorChannel& c : channels_)
     os << "\nsensor " << c.sensor << " " << c.direction << ": node " << c.node << " ("

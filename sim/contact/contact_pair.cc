@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "sim/contact/arc_geometry.h"
 
 namespace spallkit::contact {
 
@@ -71,8 +72,24 @@ ContactPair::ContactPair(std::string name,
     passes_[1].slave = std::move(master);
     passes_[1].master = std::move(slave);
   }
+  for (const Pass& p : passes_)
+    for (const ContactSurface* surface : {&p.slave, &p.master})
+      if (surface->curved() &&
+          static_cast<int>(surface->segment_curvature.size()) != surface->num_segments())
+        throw InputError("contact pair '" + name_ + "': surface '" + surface->name +
+                         "' has a curvature for " +
+                         std::to_string(surface->segment_curvature.size()) + " of its " +
+                         std::to_string(surface->num_segments()) + " segments");
   for (Pass& p : passes_) {
     const int n = p.slave.num_nodes();
+    if (p.slave.curved()) {
+      const int m = p.slave.num_segments();
+      p.arcs.assign(m, ArcContact{});
+      p.arc_slots.assign(m, Slot{});
+      p.arc_tangential_force.assign(m, 0.0);
+      p.arc_tangential_stiffness.assign(m, 0.0);
+      p.node_owned.assign(n, 0);
+    }
     p.tangential_force.assign(n, 0.0);
     p.tangential_stiffness.assign(n, 0.0);
     p.gap.assign(n, kInf);
@@ -160,6 +177,14 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
       }
       pass.gap[i] = kInf;
     }
+    for (size_t k = 0; k < pass.arcs.size(); ++k) {
+      if (pass.arc_tangential_force[k] != 0.0) {
+        friction_dissipation_ += 0.5 * pass.arc_tangential_force[k] * pass.arc_tangential_force[k] /
+                                 pass.arc_tangential_stiffness[k];
+        pass.arc_tangential_force[k] = 0.0;
+      }
+      pass.arcs[k] = ArcContact{};
+    }
     return;
   }
   if (!pass.grid.built() || moved2 > reach * reach) {
@@ -170,24 +195,27 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     }
     ++num_rebuilds_;
   }
+  if (slave.curved()) FindArcContacts(pass, x, y);
 
   const double* vx = state.vx.data();
   const double* vy = state.vy.data();
   const double* mass = state.mass.data();
-  const double zeta = options_.normal_damping_ratio;
-  const bool frictionless = options_.friction.IsFrictionless();
   const double capture = pass.capture;
 
   auto slave_node = [&](int i) {
     Slot& slot = pass.slots[i];
     slot = Slot{};
+    if (!pass.node_owned.empty() && pass.node_owned[i]) {
+      pass.gap[i] = kInf;  // an adjacent arc touches for it; ArcForces hands its spring on
+      return;
+    }
     const int s = slave.nodes[i];
     const Projection proj =
         ProjectOntoSurface(master, x, y, x[s], y[s], pass.grid.Candidates(x[s], y[s]));
     const bool near = proj.segment >= 0 && proj.distance <= reach;
     pass.gap[i] = near ? proj.gap : kInf;
     if (!near || proj.gap >= 0.0 || -proj.gap > capture) {
-      if (pass.tangential_force[i] != 0.0) {
+      if (pass.tangential_force[i] != 0.0 && pass.node_owned.empty()) {
         slot.friction_work = 0.5 * pass.tangential_force[i] * pass.tangential_force[i] /
                              pass.tangential_stiffness[i];
         pass.tangential_force[i] = 0.0;
@@ -199,41 +227,19 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     const double wa = 1.0 - proj.xi, wb = proj.xi;
     const double inv_mm = wa * wa * InverseMass(mass[a]) + wb * wb * InverseMass(mass[b]);
     const double k = SegmentStiffness(pass, proj.segment, mass[s], std::min(mass[a], mass[b]));
-    const double pen = -proj.gap;
-    const double nx = proj.nx, ny = proj.ny, tx = -ny, ty = nx;
-    const double rvx = vx[s] - wa * vx[a] - wb * vx[b];
-    const double rvy = vy[s] - wa * vy[a] - wb * vy[b];
-    const double vn = rvx * nx + rvy * ny, vt = rvx * tx + rvy * ty;
-
-    const double fn_elastic = k * pen;
-    double fn = fn_elastic;
-    if (zeta > 0.0) {
-      const double inv_sum = InverseMass(mass[s]) + inv_mm;
-      const double reduced = inv_sum > 0.0 ? 1.0 / inv_sum : 0.0;
-      const double c = 2.0 * zeta * std::sqrt(k * reduced);
-      fn = std::max(0.0, fn_elastic - c * vn);
-      slot.damping_work = -(fn - fn_elastic) * vn * dt;
-    }
-    slot.stored = 0.5 * k * pen * pen;
-    double ft = 0.0;
-    if (!frictionless) {
-      const double kt = options_.tangential_stiffness_ratio * k;
-      const double mu = options_.friction.Coefficient(vt);
-      const FrictionUpdate update = ReturnMap(pass.tangential_force[i], vt * dt, kt, mu * fn);
-      ft = update.force;
-      slot.friction_work = update.dissipation;
-      slot.stored += 0.5 * ft * ft / kt;
-      pass.tangential_force[i] = ft;
-      pass.tangential_stiffness[i] = kt;
-    }
+    ContactLaw(k,
+               -proj.gap,
+               proj.nx,
+               proj.ny,
+               vx[s] - wa * vx[a] - wb * vx[b],
+               vy[s] - wa * vy[a] - wb * vy[b],
+               InverseMass(mass[s]) + inv_mm,
+               dt,
+               &pass.tangential_force[i],
+               &pass.tangential_stiffness[i],
+               &slot);
     slot.segment = proj.segment;
     slot.xi = proj.xi;
-    slot.fn = fn;
-    slot.penetration = pen;
-    slot.fnx = fn * nx;
-    slot.fny = fn * ny;
-    slot.ftx = ft * tx;
-    slot.fty = ft * ty;
   };
   // Below parallel_min_nodes no OpenMP region at all (an `if(false)` region still costs a team
   // allocation per call in libgomp when it has no thread pool).
@@ -243,6 +249,7 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
   } else {
     for (int i = 0; i < ns; ++i) slave_node(i);
   }
+  if (slave.curved()) ArcForces(pass, state, dt);
 
   // Scatter in fixed slave order: deterministic for any thread count.
   double* fx = state.fx.data();
@@ -271,6 +278,239 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     resultant_.normal_magnitude_sum += slot.fn;
     resultant_.active_nodes += 1;
     resultant_.max_penetration = std::max(resultant_.max_penetration, slot.penetration);
+  }
+  for (size_t k = 0; k < pass.arc_slots.size(); ++k) {
+    const Slot& slot = pass.arc_slots[k];
+    friction_dissipation_ += slot.friction_work;
+    if (slot.segment < 0) continue;
+    damping_dissipation_ += slot.damping_work;
+    stored_energy_ += slot.stored;
+    const int sa = slave.nodes[slave.segment_a[k]], sb = slave.nodes[slave.segment_b[k]];
+    const int a = master.nodes[master.segment_a[slot.segment]];
+    const int b = master.nodes[master.segment_b[slot.segment]];
+    const double gx = slot.fnx + slot.ftx, gy = slot.fny + slot.fty;
+    const ArcContact& c = pass.arcs[k];
+    // The force acts at the arc points p (slave) and q (master), not at the chord points the
+    // weights (1 - xi, xi) put it: a couple of forces along each chord's normal at its two nodes
+    // moves it back (else a spinning roller meets a spurious torque ~ F L^3 / (16 rho^2), and
+    // the rolling contact's energy books drift by ~1 % of the contact energy per cage turn).
+    auto put = [&](int na, int nb, double xi, double ax, double ay, double fx_, double fy_) {
+      const double ex = x[nb] - x[na], ey = y[nb] - y[na], l2 = ex * ex + ey * ey;
+      const double cx = x[na] + xi * ex - ax, cy = y[na] + xi * ey - ay;  // chord point - arc point
+      // +-tau (ey, -ex) at na / nb is a couple tau L^2; it cancels the moment error about the
+      // arc point, (chord point - arc point) x force.
+      const double tau = l2 > 0.0 ? -(cx * fy_ - cy * fx_) / l2 : 0.0;
+      fx[na] += (1.0 - xi) * fx_ + tau * ey;
+      fy[na] += (1.0 - xi) * fy_ - tau * ex;
+      fx[nb] += xi * fx_ - tau * ey;
+      fy[nb] += xi * fy_ + tau * ex;
+    };
+    put(sa, sb, c.xi, c.px, c.py, gx, gy);
+    put(a, b, c.xi_master, c.qx, c.qy, -gx, -gy);
+    resultant_.normal_x += sign * slot.fnx;
+    resultant_.normal_y += sign * slot.fny;
+    resultant_.tangential_x += sign * slot.ftx;
+    resultant_.tangential_y += sign * slot.fty;
+    resultant_.normal_magnitude_sum += slot.fn;
+    resultant_.active_nodes += 1;
+    resultant_.max_penetration = std::max(resultant_.max_penetration, slot.penetration);
+  }
+}
+
+void ContactPair::ContactLaw(double k,
+                             double penetration,
+                             double nx,
+                             double ny,
+                             double rvx,
+                             double rvy,
+                             double inverse_mass_sum,
+                             double dt,
+                             double* spring,
+                             double* spring_stiffness,
+                             Slot* slot) const {
+  const double tx = -ny, ty = nx;
+  const double vn = rvx * nx + rvy * ny, vt = rvx * tx + rvy * ty;
+  const double fn_elastic = k * penetration;
+  double fn = fn_elastic;
+  const double zeta = options_.normal_damping_ratio;
+  if (zeta > 0.0) {
+    const double reduced = inverse_mass_sum > 0.0 ? 1.0 / inverse_mass_sum : 0.0;
+    const double c = 2.0 * zeta * std::sqrt(k * reduced);
+    fn = std::max(0.0, fn_elastic - c * vn);
+    slot->damping_work = -(fn - fn_elastic) * vn * dt;
+  }
+  slot->stored = 0.5 * k * penetration * penetration;
+  double ft = 0.0;
+  if (!options_.friction.IsFrictionless()) {
+    const double kt = options_.tangential_stiffness_ratio * k;
+    const double mu = options_.friction.Coefficient(vt);
+    const FrictionUpdate update = ReturnMap(*spring, vt * dt, kt, mu * fn);
+    ft = update.force;
+    slot->friction_work = update.dissipation;
+    slot->stored += 0.5 * ft * ft / kt;
+    *spring = ft;
+    *spring_stiffness = kt;
+  }
+  slot->fn = fn;
+  slot->penetration = penetration;
+  slot->fnx = fn * nx;
+  slot->fny = fn * ny;
+  slot->ftx = ft * tx;
+  slot->fty = ft * ty;
+}
+
+void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) {
+  const ContactSurface& slave = pass.slave;
+  const ContactSurface& master = pass.master;
+  std::fill(pass.node_owned.begin(), pass.node_owned.end(), 0);
+  for (int k = 0; k < slave.num_segments(); ++k) {
+    ArcContact& c = pass.arcs[k];
+    c = ArcContact{};
+    const double kappa = slave.segment_curvature[k];
+    if (!(kappa > 0.0)) continue;  // straight or concave slave segments touch by their nodes
+    const int la = slave.segment_a[k], lb = slave.segment_b[k];
+    const int sa = slave.nodes[la], sb = slave.nodes[lb];
+    const Arc arc = ArcThrough(x[sa], y[sa], x[sb], y[sb], kappa);
+    // Search from the arc's middle point.
+    double mx = 0.5 * (x[sa] + x[sb]) - arc.cx, my = 0.5 * (y[sa] + y[sb]) - arc.cy;
+    const double ml = std::hypot(mx, my);
+    if (ml > 0.0) mx = arc.cx + arc.radius * mx / ml, my = arc.cy + arc.radius * my / ml;
+    double best = kInf;
+    for (int m : pass.grid.Candidates(mx, my)) {
+      const int ma = master.nodes[master.segment_a[m]], mb = master.nodes[master.segment_b[m]];
+      const double km = master.curved() ? master.segment_curvature[m] : 0.0;
+      double gap, nx, ny, px, py, qx, qy;  // p on the slave arc, q on the master
+      if (km != 0.0) {
+        const Arc marc = ArcThrough(x[ma], y[ma], x[mb], y[mb], km);
+        const double dx = arc.cx - marc.cx, dy = arc.cy - marc.cy, d = std::hypot(dx, dy);
+        if (!(d > 0.0)) continue;
+        const double ux = dx / d, uy = dy / d;
+        qx = marc.cx + marc.radius * ux;
+        qy = marc.cy + marc.radius * uy;
+        if (marc.convex) {  // two convex circles: outside each other
+          gap = d - arc.radius - marc.radius;
+          nx = ux, ny = uy;
+        } else {  // the slave circle inside the master's
+          gap = marc.radius - d - arc.radius;
+          nx = -ux, ny = -uy;
+        }
+        px = arc.cx - arc.radius * nx;
+        py = arc.cy - arc.radius * ny;
+      } else {
+        const double ex = x[mb] - x[ma], ey = y[mb] - y[ma], l = std::hypot(ex, ey);
+        if (!(l > 0.0)) continue;
+        nx = ey / l, ny = -ex / l;
+        px = arc.cx - arc.radius * nx;
+        py = arc.cy - arc.radius * ny;
+        gap = (px - x[ma]) * nx + (py - y[ma]) * ny;
+        qx = px - gap * nx;
+        qy = py - gap * ny;
+      }
+      const double xs = ChordParameter(x[sa], y[sa], x[sb], y[sb], px, py);
+      const double xm = ChordParameter(x[ma], y[ma], x[mb], y[mb], qx, qy);
+      if (!(xs >= 0.0 && xs <= 1.0 && xm >= 0.0 && xm <= 1.0)) continue;
+      if (gap < best || (gap == best && m < c.master_segment)) {
+        best = gap;
+        c.valid = true;
+        c.master_segment = m;
+        c.xi = xs;
+        c.xi_master = xm;
+        c.gap = gap;
+        c.nx = nx;
+        c.ny = ny;
+        c.px = px, c.py = py, c.qx = qx, c.qy = qy;
+      }
+    }
+  }
+  // A roller touches a race at one place: keep only the deepest arc whose closest points lie in
+  // both spans. With one, every node between two convex arcs is an interior point of the smooth
+  // rim and takes no node contact (it would count the same overlap twice), nor do the ends of the
+  // chosen arc; vertices next to straight segments (a spall's corners) still do. With none (the
+  // closest direction falls on a kink between two deformed arcs, or a spall faces the master)
+  // every node keeps node contact.
+  int chosen = -1;
+  for (int k = 0; k < slave.num_segments(); ++k)
+    if (pass.arcs[k].valid && (chosen < 0 || pass.arcs[k].gap < pass.arcs[chosen].gap)) chosen = k;
+  if (chosen < 0) return;
+  for (int k = 0; k < slave.num_segments(); ++k)
+    if (k != chosen) pass.arcs[k].valid = false;
+  for (int i = 0; i < slave.num_nodes(); ++i) {
+    const int before = slave.segment_before[i], after = slave.segment_after[i];
+    const bool rim = before >= 0 && after >= 0 && slave.segment_curvature[before] > 0.0 &&
+                     slave.segment_curvature[after] > 0.0;
+    if (rim || before == chosen || after == chosen) pass.node_owned[i] = 1;
+  }
+}
+
+void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) {
+  const ContactSurface& slave = pass.slave;
+  const ContactSurface& master = pass.master;
+  const double* vx = state.vx.data();
+  const double* vy = state.vy.data();
+  const double* mass = state.mass.data();
+  const int n = slave.num_segments();
+  auto touching = [&](int k) {
+    const ArcContact& c = pass.arcs[k];
+    return c.valid && c.gap < 0.0 && -c.gap <= pass.capture;
+  };
+  for (int k = 0; k < n; ++k) {
+    Slot& slot = pass.arc_slots[k];
+    slot = Slot{};
+    if (!touching(k)) continue;
+    double& spring = pass.arc_tangential_force[k];
+    if (spring == 0.0) {
+      // Hand-over: the contact walked here from a neighbour arc, or from a node.
+      const int before = slave.segment_before[slave.segment_a[k]];
+      const int after = slave.segment_after[slave.segment_b[k]];
+      for (int j : {before, after}) {
+        if (j >= 0 && !touching(j) && pass.arc_tangential_force[j] != 0.0) {
+          std::swap(spring, pass.arc_tangential_force[j]);
+          break;
+        }
+      }
+      for (int local : {slave.segment_a[k], slave.segment_b[k]}) {
+        if (spring == 0.0 && pass.slots[local].segment < 0 && pass.tangential_force[local] != 0.0)
+          std::swap(spring, pass.tangential_force[local]);
+      }
+    }
+    const ArcContact& c = pass.arcs[k];
+    const int sa = slave.nodes[slave.segment_a[k]], sb = slave.nodes[slave.segment_b[k]];
+    const int a = master.nodes[master.segment_a[c.master_segment]];
+    const int b = master.nodes[master.segment_b[c.master_segment]];
+    const double ws = c.xi, wa = 1.0 - c.xi_master, wb = c.xi_master;
+    const double inv_ms =
+        (1.0 - ws) * (1.0 - ws) * InverseMass(mass[sa]) + ws * ws * InverseMass(mass[sb]);
+    const double inv_mm = wa * wa * InverseMass(mass[a]) + wb * wb * InverseMass(mass[b]);
+    const double k_pen = SegmentStiffness(
+        pass, c.master_segment, std::min(mass[sa], mass[sb]), std::min(mass[a], mass[b]));
+    ContactLaw(k_pen,
+               -c.gap,
+               c.nx,
+               c.ny,
+               (1.0 - ws) * vx[sa] + ws * vx[sb] - wa * vx[a] - wb * vx[b],
+               (1.0 - ws) * vy[sa] + ws * vy[sb] - wa * vy[a] - wb * vy[b],
+               inv_ms + inv_mm,
+               dt,
+               &spring,
+               &pass.arc_tangential_stiffness[k],
+               &slot);
+    slot.segment = c.master_segment;
+    slot.xi = c.xi_master;
+  }
+  // Springs nobody took over are released (their energy is dissipated, as for a node).
+  for (int k = 0; k < n; ++k) {
+    double& f = pass.arc_tangential_force[k];
+    if (f != 0.0 && pass.arc_slots[k].segment < 0) {
+      pass.arc_slots[k].friction_work += 0.5 * f * f / pass.arc_tangential_stiffness[k];
+      f = 0.0;
+    }
+  }
+  for (int i = 0; i < slave.num_nodes(); ++i) {
+    double& f = pass.tangential_force[i];
+    if (f != 0.0 && pass.slots[i].segment < 0) {
+      pass.slots[i].friction_work += 0.5 * f * f / pass.tangential_stiffness[i];
+      f = 0.0;
+    }
   }
 }
 
@@ -341,6 +581,10 @@ std::string ContactPair::SaveState() const {
       Put(&out, p.tangential_stiffness[i]);
       Put(&out, p.gap[i]);
     }
+    for (size_t k = 0; k < p.arcs.size(); ++k) {  // curved slave surface only
+      Put(&out, p.arc_tangential_force[k]);
+      Put(&out, p.arc_tangential_stiffness[k]);
+    }
   }
   return out;
 }
@@ -364,6 +608,10 @@ void ContactPair::LoadState(const std::string& bytes) {
       p.tangential_force[i] = Get<double>(bytes, &pos, name_);
       p.tangential_stiffness[i] = Get<double>(bytes, &pos, name_);
       p.gap[i] = Get<double>(bytes, &pos, name_);
+    }
+    for (size_t k = 0; k < p.arcs.size(); ++k) {
+      p.arc_tangential_force[k] = Get<double>(bytes, &pos, name_);
+      p.arc_tangential_stiffness[k] = Get<double>(bytes, &pos, name_);
     }
     p.grid = SegmentGrid{};  // rebuilt at the next step
   }

@@ -22,6 +22,17 @@
 // the capped force) + normal damping work (c v_n^2 dt) + tangential spring energy released when a
 // node leaves contact.
 //
+// Curved surfaces (ContactSurface::segment_curvature, arc_geometry.h): a slave node projects onto
+// the master's arcs instead of its chords. A convex slave arc (a roller rim between two nodes)
+// touches too: its closest point to each candidate master segment lies on the line through the two
+// circles' centres (or along the straight master's normal); where that point falls inside both
+// spans it is a contact point whose force goes to the slave arc's nodes by (1 - xi, xi), like the
+// master's. Such an arc owns its two nodes (they take no node contact that step), so a rim of nodes
+// on a circle touches a circular race as the two circles do, with no facet bump. A vertex where no
+// adjacent arc finds its closest point (a spall's corner) keeps node-to-arc contact. The tangential
+// spring of an arc that gives up contact passes to its neighbour arc that takes it over (a rolling
+// contact walks along the rim) instead of being released.
+//
 // Cost: surfaces far apart are rejected by bounding boxes (two min/max passes over the surface
 // nodes, no search). The grid is rebuilt only when a master node has moved margin/2. All buffers
 // are sized at construction or at the first step: nothing is allocated in the time loop unless a
@@ -117,8 +128,20 @@ class ContactPair : public solver::ForceContributor {
     double fn = 0.0, penetration = 0.0;
     double stored = 0.0, friction_work = 0.0, damping_work = 0.0;
   };
+  struct ArcContact {    // one convex slave arc's closest point this step
+    bool valid = false;  // closest points inside both spans
+    int master_segment = -1;
+    double xi = 0.0, xi_master = 0.0;
+    double gap = 0.0, nx = 0.0, ny = 0.0;           // signed gap along the master's outward normal
+    double px = 0.0, py = 0.0, qx = 0.0, qy = 0.0;  // closest points on the slave / master arc
+  };
   struct Pass {
     ContactSurface slave, master;
+    // Curved slave surface only: per slave segment.
+    std::vector<ArcContact> arcs;
+    std::vector<Slot> arc_slots;
+    std::vector<double> arc_tangential_force, arc_tangential_stiffness;
+    std::vector<char> node_owned;  // per slave node: an adjacent arc has its closest point
     SegmentGrid grid;
     std::vector<double> x_built, y_built;  // master node positions at the last grid build
     std::vector<double> tangential_force;  // per slave node, along the master tangent
@@ -129,6 +152,23 @@ class ContactPair : public solver::ForceContributor {
   };
 
   void RunPass(Pass& pass, fe::NodalState& state, double dt, double sign);
+  // The contact law at one contact point (a slave node or arc point): normal penalty with damping,
+  // tangential spring `spring` (updated) capped by Coulomb; fills the slot's forces and energies.
+  void ContactLaw(double k,
+                  double penetration,
+                  double nx,
+                  double ny,
+                  double rvx,
+                  double rvy,
+                  double inverse_mass_sum,
+                  double dt,
+                  double* spring,
+                  double* spring_stiffness,
+                  Slot* slot) const;
+  // Curved slave surface: closest points of the convex slave arcs (sets node_owned), before the
+  // node loop; ArcForces after it (friction hand-over, forces into arc_slots, serial).
+  void FindArcContacts(Pass& pass, const double* x, const double* y);
+  void ArcForces(Pass& pass, const fe::NodalState& state, double dt);
   double SegmentStiffness(const Pass& pass,
                           int segment,
                           double slave_mass,

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/contact/arc_geometry.h"
+
 namespace spallkit::contact {
 
 void SegmentGrid::Build(const ContactSurface& surface,
@@ -78,13 +80,30 @@ Projection ProjectOntoSurface(const ContactSurface& surface,
                               std::span<const int> candidates) {
   Projection best;
   double best_d2 = std::numeric_limits<double>::infinity();
+  const bool curved = surface.curved();
   for (int s : candidates) {
     const int a = surface.nodes[surface.segment_a[s]], b = surface.nodes[surface.segment_b[s]];
-    const double ex = x[b] - x[a], ey = y[b] - y[a];
-    const double l2 = ex * ex + ey * ey;
-    double xi = l2 > 0.0 ? ((px - x[a]) * ex + (py - y[a]) * ey) / l2 : 0.0;
-    xi = std::clamp(xi, 0.0, 1.0);
-    const double cx = x[a] + xi * ex, cy = y[a] + xi * ey;
+    double xi, cx, cy;
+    if (curved && surface.segment_curvature[s] != 0.0) {
+      // Nearest point of the arc's circle, or the nearer end where that falls outside the span.
+      const Arc arc = ArcThrough(x[a], y[a], x[b], y[b], surface.segment_curvature[s]);
+      const double dx = px - arc.cx, dy = py - arc.cy, d = std::hypot(dx, dy);
+      cx = d > 0.0 ? arc.cx + arc.radius * dx / d : x[a];
+      cy = d > 0.0 ? arc.cy + arc.radius * dy / d : y[a];
+      xi = ChordParameter(x[a], y[a], x[b], y[b], cx, cy);
+      if (!(xi >= 0.0 && xi <= 1.0)) {
+        xi = xi > 0.5 ? 1.0 : 0.0;
+        cx = xi == 0.0 ? x[a] : x[b];
+        cy = xi == 0.0 ? y[a] : y[b];
+      }
+    } else {
+      const double ex = x[b] - x[a], ey = y[b] - y[a];
+      const double l2 = ex * ex + ey * ey;
+      xi = l2 > 0.0 ? ((px - x[a]) * ex + (py - y[a]) * ey) / l2 : 0.0;
+      xi = std::clamp(xi, 0.0, 1.0);
+      cx = x[a] + xi * ex;
+      cy = y[a] + xi * ey;
+    }
     const double d2 = (px - cx) * (px - cx) + (py - cy) * (py - cy);
     if (d2 < best_d2 || (d2 == best_d2 && s < best.segment)) {
       best_d2 = d2;
@@ -96,21 +115,26 @@ Projection ProjectOntoSurface(const ContactSurface& surface,
   }
   if (best.segment < 0) return best;
   best.distance = std::sqrt(best_d2);
-  auto segment_normal = [&](int s, double* nx, double* ny) {
+  // Outward normal of segment s at its point (qx, qy): the chord's, or the arc's radial one.
+  auto segment_normal = [&](int s, double qx, double qy, double* nx, double* ny) {
     const int a = surface.nodes[surface.segment_a[s]], b = surface.nodes[surface.segment_b[s]];
+    if (curved && surface.segment_curvature[s] != 0.0) {
+      ArcNormal(ArcThrough(x[a], y[a], x[b], y[b], surface.segment_curvature[s]), qx, qy, nx, ny);
+      return;
+    }
     const double ex = x[b] - x[a], ey = y[b] - y[a];
     const double l = std::hypot(ex, ey);
     *nx = l > 0.0 ? ey / l : 0.0;
     *ny = l > 0.0 ? -ex / l : 0.0;
   };
   double nx, ny;
-  segment_normal(best.segment, &nx, &ny);
+  segment_normal(best.segment, best.cx, best.cy, &nx, &ny);
   int other = -1;
   if (best.xi == 0.0) other = surface.segment_before[surface.segment_a[best.segment]];
   if (best.xi == 1.0) other = surface.segment_after[surface.segment_b[best.segment]];
   if (other >= 0) {
     double mx, my;
-    segment_normal(other, &mx, &my);
+    segment_normal(other, best.cx, best.cy, &mx, &my);
     const double sx = nx + mx, sy = ny + my, l = std::hypot(sx, sy);
     if (l > 1e-12) {
       nx = sx / l;

@@ -108,4 +108,27 @@ ContactSurface MakeSurface(const fe::Mesh& mesh,
   return s;
 }
 
+int MarkCircularArcs(ContactSurface* surface,
+                     const double* x,
+                     const double* y,
+                     double cx,
+                     double cy,
+                     double radius,
+                     double tolerance) {
+  surface->segment_curvature.resize(surface->num_segments(), 0.0);
+  int arcs = 0;
+  for (int k = 0; k < surface->num_segments(); ++k) {
+    const int a = surface->nodes[surface->segment_a[k]], b = surface->nodes[surface->segment_b[k]];
+    if (std::abs(std::hypot(x[a] - cx, y[a] - cy) - radius) > tolerance ||
+        std::abs(std::hypot(x[b] - cx, y[b] - cy) - radius) > tolerance)
+      continue;
+    // Outward normal (dy, -dx): the centre lies behind it (body side) for a convex arc.
+    const double nx = y[b] - y[a], ny = -(x[b] - x[a]);
+    const double behind = (cx - 0.5 * (x[a] + x[b])) * nx + (cy - 0.5 * (y[a] + y[b])) * ny;
+    surface->segment_curvature[k] = behind < 0.0 ? 1.0 / radius : -1.0 / radius;
+    ++arcs;
+  }
+  return arcs;
+}
+
 }  // namespace spallkit::contact

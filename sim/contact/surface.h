@@ -26,7 +26,14 @@ struct ContactSurface {
   // K * L^2 / A_elem * t per segment (N/m before the scale factor); empty if unknown (surfaces
   // built from bare node chains), in which case only the mass and constant laws apply.
   std::vector<double> bulk_stiffness;
+  // Curved surfaces (arc_geometry.h): per segment signed curvature 1/rho (1/m) of the circular arc
+  // through its two nodes; > 0 convex (bulges along the outward normal: a roller rim, the inner
+  // raceway), < 0 concave (the outer raceway), 0 straight. Empty: every segment is straight (the
+  // chord). A pair projects onto the arcs and, on a curved slave surface, also lets the slave arcs
+  // touch (contact_pair.h), so a polygon of nodes on a circle contacts as the circle itself.
+  std::vector<double> segment_curvature;
 
+  bool curved() const { return !segment_curvature.empty(); }
   int num_nodes() const { return static_cast<int>(nodes.size()); }
   int num_segments() const { return static_cast<int>(segment_a.size()); }
   double MeanSegmentLength(const double* x, const double* y) const;
@@ -46,5 +53,17 @@ ContactSurface MakeSurface(const fe::Mesh& mesh,
                            const std::string& curve_name,
                            const std::vector<double>& bulk_modulus,
                            double thickness);
+
+// Marks the segments of `surface` whose two nodes lie on the circle (cx, cy, radius) within
+// `tolerance` (m, reference positions x, y) as arcs of that circle: curvature +1/radius where the
+// centre is on the body side (convex), -1/radius where it is outside (concave). Other segments
+// stay straight. Returns the number of arcs.
+int MarkCircularArcs(ContactSurface* surface,
+                     const double* x,
+                     const double* y,
+                     double cx,
+                     double cy,
+                     double radius,
+                     double tolerance);
 
 }  // namespace spallkit::contact

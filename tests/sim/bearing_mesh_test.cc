@@ -107,7 +107,8 @@ TEST(BearingMesh, PaperMeshHasValidElementsAndReportsQuality) {
 // (the old layout's core-corner elements had 0.27 contact sizes and set the step), and the
 // adapter's seat corners must stay above the rollers.
 TEST(BearingMesh, MergedQualityReportFoldsTheRollersIntoOneLine) {
-  const MeshQualityReport q = MeasureMeshQuality(MeshBearing(PaperScene({"mesh.size_mm=0.5"})).mesh);
+  const MeshQualityReport q =
+      MeasureMeshQuality(MeshBearing(PaperScene({"mesh.size_mm=0.5"})).mesh);
   const MeshQualityReport merged = q.Merged();
   ASSERT_EQ(merged.parts.size(), 5u);  // outer_ring, inner_ring, cage, roller0..12, adapter
   const PartQuality& rollers = Part(merged, "roller0..12");

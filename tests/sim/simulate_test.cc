@@ -283,7 +283,8 @@ TEST(SimulateTest, WritesTheDocumentedHdf5Layout) {
   h5::File f = h5::File::OpenReadOnly(o.output_path);
   EXPECT_EQ(f.ReadStringAttribute("/", "scene").value(), scene.effective_toml);
   EXPECT_EQ(f.ReadStringAttribute("/", "spallkit_version").value(), SPALLKIT_VERSION);
-  EXPECT_EQ(f.ReadStringAttribute("/", "mesh_quality").value(), sim.model().mesh_quality().Report());
+  EXPECT_EQ(f.ReadStringAttribute("/", "mesh_quality").value(),
+            sim.model().mesh_quality().Report());
   const int n = 11;  // 0.2 ms at 50 kHz, both ends
   const int z = 13;
   std::vector<size_t> dims;
