@@ -271,13 +271,7 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     fy[a] -= wa * gy;
     fx[b] -= wb * gx;
     fy[b] -= wb * gy;
-    resultant_.normal_x += sign * slot.fnx;
-    resultant_.normal_y += sign * slot.fny;
-    resultant_.tangential_x += sign * slot.ftx;
-    resultant_.tangential_y += sign * slot.fty;
-    resultant_.normal_magnitude_sum += slot.fn;
-    resultant_.active_nodes += 1;
-    resultant_.max_penetration = std::max(resultant_.max_penetration, slot.penetration);
+    AddToResultant(slot, sign);
   }
   for (size_t k = 0; k < pass.arc_slots.size(); ++k) {
     const Slot& slot = pass.arc_slots[k];
@@ -307,14 +301,18 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     };
     put(sa, sb, c.xi, c.px, c.py, gx, gy);
     put(a, b, c.xi_master, c.qx, c.qy, -gx, -gy);
-    resultant_.normal_x += sign * slot.fnx;
-    resultant_.normal_y += sign * slot.fny;
-    resultant_.tangential_x += sign * slot.ftx;
-    resultant_.tangential_y += sign * slot.fty;
-    resultant_.normal_magnitude_sum += slot.fn;
-    resultant_.active_nodes += 1;
-    resultant_.max_penetration = std::max(resultant_.max_penetration, slot.penetration);
+    AddToResultant(slot, sign);
   }
+}
+
+void ContactPair::AddToResultant(const Slot& slot, double sign) {
+  resultant_.normal_x += sign * slot.fnx;
+  resultant_.normal_y += sign * slot.fny;
+  resultant_.tangential_x += sign * slot.ftx;
+  resultant_.tangential_y += sign * slot.fty;
+  resultant_.normal_magnitude_sum += slot.fn;
+  resultant_.active_nodes += 1;
+  resultant_.max_penetration = std::max(resultant_.max_penetration, slot.penetration);
 }
 
 void ContactPair::ContactLaw(double k,

@@ -152,6 +152,7 @@ class ContactPair : public solver::ForceContributor {
   };
 
   void RunPass(Pass& pass, fe::NodalState& state, double dt, double sign);
+  void AddToResultant(const Slot& slot, double sign);  // sign -1: second pass (swapped roles)
   // The contact law at one contact point (a slave node or arc point): normal penalty with damping,
   // tangential spring `spring` (updated) capped by Coulomb; fills the slot's forces and energies.
   void ContactLaw(double k,
