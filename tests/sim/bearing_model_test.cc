@@ -67,17 +67,21 @@ TEST(BearingModelTest, FullFeCageStaysCentredAtSpeed) {
                                 "friction.mu_static=0.1",
                                 "friction.mu_dynamic=0.08",
                                 "solver.threads=1"}));
-  double worst = 0.0;
-  for (int ms = 1; ms <= 8; ++ms) {
-    model.solver().Run(1e-3 * ms);
+  double worst = 0.0, omega_sum = 0.0;
+  int omega_samples = 0;
+  for (int k = 1; k <= 80; ++k) {  // every 0.1 ms up to 8 ms
+    model.solver().Run(1e-4 * k);
     const BodyMotion c = model.CageMotion();
     worst = std::max(worst, std::hypot(c.cx, c.cy));
+    if (k > 60) omega_sum += c.omega, ++omega_samples;
   }
   const double play = model.options().cage_guide.radial_play_m;
   EXPECT_LT(worst, play + 0.25e-3);
   EXPECT_LT(model.solver().energies().BalanceError(), 1e-3);
-  // And the cage turns at close to its rolling speed after the 5 ms ramp.
-  EXPECT_NEAR(model.CageMotion().omega, model.TheoreticalCageSpeed(8e-3), 0.1 * 261.1);
+  // And the cage turns at close to its rolling speed after the 5 ms ramp. Its mean over 6-8 ms:
+  // the instantaneous speed of this faceted 1 mm model rattles by +-15 %, and which value 8 ms
+  // lands on changed with the compiler's floating-point contraction alone (-march=native FMA).
+  EXPECT_NEAR(omega_sum / omega_samples, model.TheoreticalCageSpeed(8e-3), 0.1 * 261.1);
 }
 
 // Static load (speed 0): the outer-race contact forces carry the 10 kN, only rollers in the
