@@ -9,9 +9,19 @@
 // bump comes back N times per turn with an acceleration ~ 2 pi^4 r f_spin^2 whatever N is.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace spallkit::contact {
+
+// Outward unit normal (dy, -dx) / L of the chord a -> b (body on the left); returns L. Zero
+// normal for a zero-length chord.
+inline double ChordNormal(double ax, double ay, double bx, double by, double* nx, double* ny) {
+  const double ex = bx - ax, ey = by - ay, l = std::hypot(ex, ey);
+  *nx = l > 0.0 ? ey / l : 0.0;
+  *ny = l > 0.0 ? -ex / l : 0.0;
+  return l;
+}
 
 struct Arc {
   double cx = 0.0, cy = 0.0;  // centre
@@ -23,10 +33,9 @@ inline Arc ArcThrough(double ax, double ay, double bx, double by, double kappa) 
   Arc arc;
   arc.radius = 1.0 / std::abs(kappa);
   arc.convex = kappa > 0.0;
-  const double ex = bx - ax, ey = by - ay;
-  const double l = std::hypot(ex, ey);
+  double nx, ny;
+  const double l = ChordNormal(ax, ay, bx, by, &nx, &ny);
   const double h = std::sqrt(std::max(0.0, arc.radius * arc.radius - 0.25 * l * l));
-  const double nx = l > 0.0 ? ey / l : 0.0, ny = l > 0.0 ? -ex / l : 0.0;
   const double side = arc.convex ? -h : h;
   arc.cx = 0.5 * (ax + bx) + side * nx;
   arc.cy = 0.5 * (ay + by) + side * ny;

@@ -15,6 +15,15 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double InverseMass(double m) { return m > 0.0 ? 1.0 / m : 0.0; }
+
+// A tangential spring leaving contact: its stored energy 1/2 F^2 / k_t is dissipated (returned)
+// and the spring is emptied.
+double ReleaseSpring(double* force, double stiffness) {
+  if (*force == 0.0) return 0.0;
+  const double energy = 0.5 * *force * *force / stiffness;
+  *force = 0.0;
+  return energy;
+}
 }  // namespace
 
 bool ContactPairOptions::IsValid(std::string* error) const {
@@ -169,20 +178,17 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
       sx0 > mx1 + reach || sx1 < mx0 - reach || sy0 > my1 + reach || sy1 < my0 - reach;
   if (apart) {
     // Far apart: no search. Release any tangential springs still loaded.
+    // (Adding the released energy unconditionally put a serial floating-point add in this loop:
+    // +40 % per node when far apart, bench/contact_benchmark.)
     for (int i = 0; i < ns; ++i) {
-      if (pass.tangential_force[i] != 0.0) {
-        friction_dissipation_ += 0.5 * pass.tangential_force[i] * pass.tangential_force[i] /
-                                 pass.tangential_stiffness[i];
-        pass.tangential_force[i] = 0.0;
-      }
+      if (pass.tangential_force[i] != 0.0)
+        friction_dissipation_ +=
+            ReleaseSpring(&pass.tangential_force[i], pass.tangential_stiffness[i]);
       pass.gap[i] = kInf;
     }
     for (size_t k = 0; k < pass.arcs.size(); ++k) {
-      if (pass.arc_tangential_force[k] != 0.0) {
-        friction_dissipation_ += 0.5 * pass.arc_tangential_force[k] * pass.arc_tangential_force[k] /
-                                 pass.arc_tangential_stiffness[k];
-        pass.arc_tangential_force[k] = 0.0;
-      }
+      friction_dissipation_ +=
+          ReleaseSpring(&pass.arc_tangential_force[k], pass.arc_tangential_stiffness[k]);
       pass.arcs[k] = ArcContact{};
     }
     return;
@@ -215,11 +221,9 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     const bool near = proj.segment >= 0 && proj.distance <= reach;
     pass.gap[i] = near ? proj.gap : kInf;
     if (!near || proj.gap >= 0.0 || -proj.gap > capture) {
-      if (pass.tangential_force[i] != 0.0 && pass.node_owned.empty()) {
-        slot.friction_work = 0.5 * pass.tangential_force[i] * pass.tangential_force[i] /
-                             pass.tangential_stiffness[i];
-        pass.tangential_force[i] = 0.0;
-      }
+      // (On a curved slave surface ArcForces releases it, unless an arc takes it over.)
+      if (pass.node_owned.empty())
+        slot.friction_work = ReleaseSpring(&pass.tangential_force[i], pass.tangential_stiffness[i]);
       return;
     }
     const int a = master.nodes[master.segment_a[proj.segment]];
@@ -395,9 +399,7 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
         px = arc.cx - arc.radius * nx;
         py = arc.cy - arc.radius * ny;
       } else {
-        const double ex = x[mb] - x[ma], ey = y[mb] - y[ma], l = std::hypot(ex, ey);
-        if (!(l > 0.0)) continue;
-        nx = ey / l, ny = -ex / l;
+        if (!(ChordNormal(x[ma], y[ma], x[mb], y[mb], &nx, &ny) > 0.0)) continue;
         px = arc.cx - arc.radius * nx;
         py = arc.cy - arc.radius * ny;
         gap = (px - x[ma]) * nx + (py - y[ma]) * ny;
@@ -496,20 +498,14 @@ void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) 
     slot.xi = c.xi_master;
   }
   // Springs nobody took over are released (their energy is dissipated, as for a node).
-  for (int k = 0; k < n; ++k) {
-    double& f = pass.arc_tangential_force[k];
-    if (f != 0.0 && pass.arc_slots[k].segment < 0) {
-      pass.arc_slots[k].friction_work += 0.5 * f * f / pass.arc_tangential_stiffness[k];
-      f = 0.0;
-    }
-  }
-  for (int i = 0; i < slave.num_nodes(); ++i) {
-    double& f = pass.tangential_force[i];
-    if (f != 0.0 && pass.slots[i].segment < 0) {
-      pass.slots[i].friction_work += 0.5 * f * f / pass.tangential_stiffness[i];
-      f = 0.0;
-    }
-  }
+  for (int k = 0; k < n; ++k)
+    if (pass.arc_slots[k].segment < 0)
+      pass.arc_slots[k].friction_work +=
+          ReleaseSpring(&pass.arc_tangential_force[k], pass.arc_tangential_stiffness[k]);
+  for (int i = 0; i < slave.num_nodes(); ++i)
+    if (pass.slots[i].segment < 0)
+      pass.slots[i].friction_work +=
+          ReleaseSpring(&pass.tangential_force[i], pass.tangential_stiffness[i]);
 }
 
 double ContactPair::StableTimeStep(const fe::NodalState& state) const {

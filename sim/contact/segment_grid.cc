@@ -122,10 +122,7 @@ Projection ProjectOntoSurface(const ContactSurface& surface,
       ArcNormal(ArcThrough(x[a], y[a], x[b], y[b], surface.segment_curvature[s]), qx, qy, nx, ny);
       return;
     }
-    const double ex = x[b] - x[a], ey = y[b] - y[a];
-    const double l = std::hypot(ex, ey);
-    *nx = l > 0.0 ? ey / l : 0.0;
-    *ny = l > 0.0 ? -ex / l : 0.0;
+    ChordNormal(x[a], y[a], x[b], y[b], nx, ny);
   };
   double nx, ny;
   segment_normal(best.segment, best.cx, best.cy, &nx, &ny);
