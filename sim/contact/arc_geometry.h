@@ -14,36 +14,46 @@
 
 namespace spallkit::contact {
 
+// The helpers are templates so that contact_pair.cc can evaluate the same geometry on automatic-
+// differentiation numbers (ceres::Jet) for the exact gradient of a penetration; T = double
+// elsewhere. (Unqualified sqrt / hypot: std's for double, ceres' by argument lookup for Jet.)
+
 // Outward unit normal (dy, -dx) / L of the chord a -> b (body on the left); returns L. Zero
 // normal for a zero-length chord.
-inline double ChordNormal(double ax, double ay, double bx, double by, double* nx, double* ny) {
-  const double ex = bx - ax, ey = by - ay, l = std::hypot(ex, ey);
-  *nx = l > 0.0 ? ey / l : 0.0;
-  *ny = l > 0.0 ? -ex / l : 0.0;
+template <typename T>
+T ChordNormal(const T& ax, const T& ay, const T& bx, const T& by, T* nx, T* ny) {
+  using std::hypot;
+  const T ex = bx - ax, ey = by - ay, l = hypot(ex, ey);
+  *nx = l > 0.0 ? T(ey / l) : T(0.0);
+  *ny = l > 0.0 ? T(-ex / l) : T(0.0);
   return l;
 }
 
+template <typename T = double>
 struct Arc {
-  double cx = 0.0, cy = 0.0;  // centre
+  T cx = T(0.0), cy = T(0.0);  // centre
   double radius = 0.0;
   bool convex = true;
 };
 
-inline Arc ArcThrough(double ax, double ay, double bx, double by, double kappa) {
-  Arc arc;
+template <typename T>
+Arc<T> ArcThrough(const T& ax, const T& ay, const T& bx, const T& by, double kappa) {
+  using std::sqrt;
+  Arc<T> arc;
   arc.radius = 1.0 / std::abs(kappa);
   arc.convex = kappa > 0.0;
-  double nx, ny;
-  const double l = ChordNormal(ax, ay, bx, by, &nx, &ny);
-  const double h = std::sqrt(std::max(0.0, arc.radius * arc.radius - 0.25 * l * l));
-  const double side = arc.convex ? -h : h;
+  T nx, ny;
+  const T l = ChordNormal(ax, ay, bx, by, &nx, &ny);
+  const T h2 = arc.radius * arc.radius - 0.25 * l * l;
+  const T h = h2 > 0.0 ? T(sqrt(h2)) : T(0.0);
+  const T side = arc.convex ? T(-h) : h;
   arc.cx = 0.5 * (ax + bx) + side * nx;
   arc.cy = 0.5 * (ay + by) + side * ny;
   return arc;
 }
 
 // Outward unit normal of the arc at its point (qx, qy): radial, away from the centre when convex.
-inline void ArcNormal(const Arc& arc, double qx, double qy, double* nx, double* ny) {
+inline void ArcNormal(const Arc<double>& arc, double qx, double qy, double* nx, double* ny) {
   const double dx = qx - arc.cx, dy = qy - arc.cy;
   const double l = std::hypot(dx, dy);
   const double s = arc.convex ? 1.0 : -1.0;
@@ -53,10 +63,54 @@ inline void ArcNormal(const Arc& arc, double qx, double qy, double* nx, double* 
 
 // Chord parameter of a point q of segment a -> b: 0 at a, 1 at b (projection on the chord; monotone
 // along the arc, so q lies on the arc's span iff 0 <= xi <= 1).
-inline double ChordParameter(double ax, double ay, double bx, double by, double qx, double qy) {
-  const double ex = bx - ax, ey = by - ay;
-  const double l2 = ex * ex + ey * ey;
-  return l2 > 0.0 ? ((qx - ax) * ex + (qy - ay) * ey) / l2 : 0.0;
+template <typename T>
+T ChordParameter(const T& ax, const T& ay, const T& bx, const T& by, const T& qx, const T& qy) {
+  const T ex = bx - ax, ey = by - ay;
+  const T l2 = ex * ex + ey * ey;
+  return l2 > 0.0 ? T(((qx - ax) * ex + (qy - ay) * ey) / l2) : T(0.0);
+}
+
+// Closest points of a convex slave arc s (curvature ks > 0) and a master segment m (an arc of
+// curvature km, or straight when km = 0): on the line through the two centres (straight master:
+// along its normal). gap < 0 is overlap, measured along n, the master's outward normal there.
+template <typename T>
+struct ArcPair {
+  T gap, nx, ny;
+  T px, py, qx, qy;  // on the slave arc / the master segment
+  T xi, xi_master;   // their chord parameters (in both spans iff both in [0, 1])
+};
+template <typename T>
+bool ArcClosestPoints(const T s[4], double ks, const T m[4], double km, ArcPair<T>* out) {
+  using std::hypot;
+  const Arc<T> arc = ArcThrough(s[0], s[1], s[2], s[3], ks);
+  ArcPair<T>& c = *out;
+  if (km != 0.0) {
+    const Arc<T> marc = ArcThrough(m[0], m[1], m[2], m[3], km);
+    const T dx = arc.cx - marc.cx, dy = arc.cy - marc.cy, d = hypot(dx, dy);
+    if (!(d > 0.0)) return false;
+    const T ux = dx / d, uy = dy / d;
+    c.qx = marc.cx + marc.radius * ux;
+    c.qy = marc.cy + marc.radius * uy;
+    if (marc.convex) {  // two convex circles: outside each other
+      c.gap = d - arc.radius - marc.radius;
+      c.nx = ux, c.ny = uy;
+    } else {  // the slave circle inside the master's
+      c.gap = marc.radius - d - arc.radius;
+      c.nx = -ux, c.ny = -uy;
+    }
+    c.px = arc.cx - arc.radius * c.nx;
+    c.py = arc.cy - arc.radius * c.ny;
+  } else {
+    if (!(ChordNormal(m[0], m[1], m[2], m[3], &c.nx, &c.ny) > 0.0)) return false;
+    c.px = arc.cx - arc.radius * c.nx;
+    c.py = arc.cy - arc.radius * c.ny;
+    c.gap = (c.px - m[0]) * c.nx + (c.py - m[1]) * c.ny;
+    c.qx = c.px - c.gap * c.nx;
+    c.qy = c.py - c.gap * c.ny;
+  }
+  c.xi = ChordParameter(s[0], s[1], s[2], s[3], c.px, c.py);
+  c.xi_master = ChordParameter(m[0], m[1], m[2], m[3], c.qx, c.qy);
+  return true;
 }
 
 }  // namespace spallkit::contact

@@ -1,5 +1,7 @@
 #include "sim/contact/contact_pair.h"
 
+#include <ceres/jet.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -24,6 +26,54 @@ double ReleaseSpring(double* force, double stiffness) {
   *force = 0.0;
   return energy;
 }
+
+// A force (fx, fy) acting at the arc point (px, py) of the chord na -> nb whose parameter is xi,
+// as forces on the two nodes: chord weights (1 - xi, xi) plus a couple along the chord's normal
+// that moves the line of action from the chord point back to the arc point (else a spinning
+// roller meets a spurious torque ~ F L^3 / (16 rho^2)). Used for the tangential (friction) force,
+// which must turn the roller about its centre.
+void SpreadAtArcPoint(const double* x,
+                      const double* y,
+                      int na,
+                      int nb,
+                      double xi,
+                      double px,
+                      double py,
+                      double fx_,
+                      double fy_,
+                      double* fx,
+                      double* fy) {
+  const double ex = x[nb] - x[na], ey = y[nb] - y[na], l2 = ex * ex + ey * ey;
+  const double cx = x[na] + xi * ex - px, cy = y[na] + xi * ey - py;  // chord point - arc point
+  // +-tau (ey, -ex) at na / nb is a couple tau L^2; it cancels the moment error about the arc
+  // point, (chord point - arc point) x force.
+  const double tau = l2 > 0.0 ? -(cx * fy_ - cy * fx_) / l2 : 0.0;
+  fx[na] += (1.0 - xi) * fx_ + tau * ey;
+  fy[na] += (1.0 - xi) * fy_ - tau * ex;
+  fx[nb] += xi * fx_ - tau * ey;
+  fy[nb] += xi * fy_ + tau * ex;
+}
+
+// The velocity that SpreadAtArcPoint's forces do work with (F . v = sum of node forces . node
+// velocities): the chord point's plus the chord's turning rate times the offset to the arc point.
+void ArcPointVelocity(const double* x,
+                      const double* y,
+                      const double* vx,
+                      const double* vy,
+                      int na,
+                      int nb,
+                      double xi,
+                      double px,
+                      double py,
+                      double* wx,
+                      double* wy) {
+  const double ex = x[nb] - x[na], ey = y[nb] - y[na], l2 = ex * ex + ey * ey;
+  const double cx = x[na] + xi * ex - px, cy = y[na] + xi * ey - py;
+  const double turn = l2 > 0.0 ? (ey * (vx[na] - vx[nb]) - ex * (vy[na] - vy[nb])) / l2 : 0.0;
+  *wx = (1.0 - xi) * vx[na] + xi * vx[nb] + turn * cy;
+  *wy = (1.0 - xi) * vy[na] + xi * vy[nb] - turn * cx;
+}
+
 }  // namespace
 
 bool ContactPairOptions::IsValid(std::string* error) const {
@@ -93,10 +143,8 @@ ContactPair::ContactPair(std::string name,
     const int n = p.slave.num_nodes();
     if (p.slave.curved()) {
       const int m = p.slave.num_segments();
-      p.arcs.assign(m, ArcContact{});
-      p.arc_slots.assign(m, Slot{});
-      p.arc_tangential_force.assign(m, 0.0);
-      p.arc_tangential_stiffness.assign(m, 0.0);
+      p.arc_candidates.reserve(4 * m);  // no allocation in the time loop
+      p.arc_blend.reserve(4 * m);
       p.node_owned.assign(n, 0);
     }
     p.tangential_force.assign(n, 0.0);
@@ -186,11 +234,8 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
             ReleaseSpring(&pass.tangential_force[i], pass.tangential_stiffness[i]);
       pass.gap[i] = kInf;
     }
-    for (size_t k = 0; k < pass.arcs.size(); ++k) {
-      friction_dissipation_ +=
-          ReleaseSpring(&pass.arc_tangential_force[k], pass.arc_tangential_stiffness[k]);
-      pass.arcs[k] = ArcContact{};
-    }
+    friction_dissipation_ += ReleaseSpring(&pass.arc_spring, pass.arc_spring_stiffness);
+    pass.arc_blend.clear();
     return;
   }
   if (!pass.grid.built() || moved2 > reach * reach) {
@@ -201,7 +246,10 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     }
     ++num_rebuilds_;
   }
-  if (slave.curved()) FindArcContacts(pass, x, y);
+  if (slave.curved()) {
+    FindArcContacts(pass, x, y);
+    if (!pass.arc_blend.empty()) BlendArcContacts(pass, x, y);
+  }
 
   const double* vx = state.vx.data();
   const double* vy = state.vy.data();
@@ -277,35 +325,30 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     fy[b] -= wb * gy;
     AddToResultant(slot, sign);
   }
-  for (size_t k = 0; k < pass.arc_slots.size(); ++k) {
-    const Slot& slot = pass.arc_slots[k];
+  if (slave.curved()) {
+    const Slot& slot = pass.arc_slot;
     friction_dissipation_ += slot.friction_work;
-    if (slot.segment < 0) continue;
-    damping_dissipation_ += slot.damping_work;
-    stored_energy_ += slot.stored;
-    const int sa = slave.nodes[slave.segment_a[k]], sb = slave.nodes[slave.segment_b[k]];
-    const int a = master.nodes[master.segment_a[slot.segment]];
-    const int b = master.nodes[master.segment_b[slot.segment]];
-    const double gx = slot.fnx + slot.ftx, gy = slot.fny + slot.fty;
-    const ArcContact& c = pass.arcs[k];
-    // The force acts at the arc points p (slave) and q (master), not at the chord points the
-    // weights (1 - xi, xi) put it: a couple of forces along each chord's normal at its two nodes
-    // moves it back (else a spinning roller meets a spurious torque ~ F L^3 / (16 rho^2), and
-    // the rolling contact's energy books drift by ~1 % of the contact energy per cage turn).
-    auto put = [&](int na, int nb, double xi, double ax, double ay, double fx_, double fy_) {
-      const double ex = x[nb] - x[na], ey = y[nb] - y[na], l2 = ex * ex + ey * ey;
-      const double cx = x[na] + xi * ex - ax, cy = y[na] + xi * ey - ay;  // chord point - arc point
-      // +-tau (ey, -ex) at na / nb is a couple tau L^2; it cancels the moment error about the
-      // arc point, (chord point - arc point) x force.
-      const double tau = l2 > 0.0 ? -(cx * fy_ - cy * fx_) / l2 : 0.0;
-      fx[na] += (1.0 - xi) * fx_ + tau * ey;
-      fy[na] += (1.0 - xi) * fy_ - tau * ex;
-      fx[nb] += xi * fx_ - tau * ey;
-      fy[nb] += xi * fy_ + tau * ex;
-    };
-    put(sa, sb, c.xi, c.px, c.py, gx, gy);
-    put(a, b, c.xi_master, c.qx, c.qy, -gx, -gy);
-    AddToResultant(slot, sign);
+    if (slot.segment >= 0) {
+      damping_dissipation_ += slot.damping_work;
+      stored_energy_ += slot.stored;
+      // Normal force -f_n grad p (conservative, BlendArcContacts); friction at the arc points
+      // (it turns the roller), by the blend's weights.
+      for (const ArcContact& c : pass.arc_blend) {
+        const int nodes[4] = {slave.nodes[slave.segment_a[c.slave_segment]],
+                              slave.nodes[slave.segment_b[c.slave_segment]],
+                              master.nodes[master.segment_a[c.master_segment]],
+                              master.nodes[master.segment_b[c.master_segment]]};
+        for (int j = 0; j < 4; ++j) {
+          fx[nodes[j]] -= slot.fn * c.grad[2 * j];
+          fy[nodes[j]] -= slot.fn * c.grad[2 * j + 1];
+        }
+        const double ftx = c.weight * slot.ftx, fty = c.weight * slot.fty;
+        SpreadAtArcPoint(x, y, nodes[0], nodes[1], c.at.xi, c.at.px, c.at.py, ftx, fty, fx, fy);
+        SpreadAtArcPoint(
+            x, y, nodes[2], nodes[3], c.at.xi_master, c.at.qx, c.at.qy, -ftx, -fty, fx, fy);
+      }
+      AddToResultant(slot, sign);
+    }
   }
 }
 
@@ -365,9 +408,9 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
   const ContactSurface& slave = pass.slave;
   const ContactSurface& master = pass.master;
   std::fill(pass.node_owned.begin(), pass.node_owned.end(), 0);
+  pass.arc_candidates.clear();
+  pass.arc_blend.clear();
   for (int k = 0; k < slave.num_segments(); ++k) {
-    ArcContact& c = pass.arcs[k];
-    c = ArcContact{};
     const double kappa = slave.segment_curvature[k];
     if (!(kappa > 0.0)) continue;  // straight or concave slave segments touch by their nodes
     const int la = slave.segment_a[k], lb = slave.segment_b[k];
@@ -377,131 +420,199 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
     double mx = 0.5 * (x[sa] + x[sb]) - arc.cx, my = 0.5 * (y[sa] + y[sb]) - arc.cy;
     const double ml = std::hypot(mx, my);
     if (ml > 0.0) mx = arc.cx + arc.radius * mx / ml, my = arc.cy + arc.radius * my / ml;
-    double best = kInf;
+    const double sp[4] = {x[sa], y[sa], x[sb], y[sb]};
     for (int m : pass.grid.Candidates(mx, my)) {
       const int ma = master.nodes[master.segment_a[m]], mb = master.nodes[master.segment_b[m]];
       const double km = master.curved() ? master.segment_curvature[m] : 0.0;
-      double gap, nx, ny, px, py, qx, qy;  // p on the slave arc, q on the master
-      if (km != 0.0) {
-        const Arc marc = ArcThrough(x[ma], y[ma], x[mb], y[mb], km);
-        const double dx = arc.cx - marc.cx, dy = arc.cy - marc.cy, d = std::hypot(dx, dy);
-        if (!(d > 0.0)) continue;
-        const double ux = dx / d, uy = dy / d;
-        qx = marc.cx + marc.radius * ux;
-        qy = marc.cy + marc.radius * uy;
-        if (marc.convex) {  // two convex circles: outside each other
-          gap = d - arc.radius - marc.radius;
-          nx = ux, ny = uy;
-        } else {  // the slave circle inside the master's
-          gap = marc.radius - d - arc.radius;
-          nx = -ux, ny = -uy;
-        }
-        px = arc.cx - arc.radius * nx;
-        py = arc.cy - arc.radius * ny;
-      } else {
-        if (!(ChordNormal(x[ma], y[ma], x[mb], y[mb], &nx, &ny) > 0.0)) continue;
-        px = arc.cx - arc.radius * nx;
-        py = arc.cy - arc.radius * ny;
-        gap = (px - x[ma]) * nx + (py - y[ma]) * ny;
-        qx = px - gap * nx;
-        qy = py - gap * ny;
-      }
-      const double xs = ChordParameter(x[sa], y[sa], x[sb], y[sb], px, py);
-      const double xm = ChordParameter(x[ma], y[ma], x[mb], y[mb], qx, qy);
-      if (!(xs >= 0.0 && xs <= 1.0 && xm >= 0.0 && xm <= 1.0)) continue;
-      if (gap < best || (gap == best && m < c.master_segment)) {
-        best = gap;
-        c.valid = true;
-        c.master_segment = m;
-        c.xi = xs;
-        c.xi_master = xm;
-        c.gap = gap;
-        c.nx = nx;
-        c.ny = ny;
-        c.px = px, c.py = py, c.qx = qx, c.qy = qy;
-      }
+      const double mp[4] = {x[ma], y[ma], x[mb], y[mb]};
+      ArcPair<double> g;
+      if (!ArcClosestPoints(sp, kappa, mp, km, &g)) continue;
+      if (!(g.xi >= 0.0 && g.xi <= 1.0 && g.xi_master >= 0.0 && g.xi_master <= 1.0)) continue;
+      ArcContact c;
+      c.at = g;
+      c.slave_segment = k;
+      c.master_segment = m;
+      pass.arc_candidates.push_back(c);
     }
   }
-  // A roller touches a race at one place: keep only the deepest arc whose closest points lie in
-  // both spans. With one, every node between two convex arcs is an interior point of the smooth
-  // rim and takes no node contact (it would count the same overlap twice), nor do the ends of the
-  // chosen arc; vertices next to straight segments (a spall's corners) still do. With none (the
-  // closest direction falls on a kink between two deformed arcs, or a spall faces the master)
-  // every node keeps node contact.
-  int chosen = -1;
-  for (int k = 0; k < slave.num_segments(); ++k)
-    if (pass.arcs[k].valid && (chosen < 0 || pass.arcs[k].gap < pass.arcs[chosen].gap)) chosen = k;
-  if (chosen < 0) return;
-  for (int k = 0; k < slave.num_segments(); ++k)
-    if (k != chosen) pass.arcs[k].valid = false;
+  // One contact per pass: the deepest point and the points of the slave arcs chained to it (a
+  // dented node gives two, see the header). With none (the closest direction falls on a kink
+  // between two deformed arcs, or a spall faces the master) every node keeps node contact.
+  const std::vector<ArcContact>& cand = pass.arc_candidates;
+  if (cand.empty()) return;
+  size_t deepest = 0;
+  for (size_t i = 1; i < cand.size(); ++i)
+    if (cand[i].at.gap < cand[deepest].at.gap) deepest = i;
+  auto has_point = [&](int k) {
+    for (const ArcContact& c : cand)
+      if (c.slave_segment == k) return true;
+    return false;
+  };
+  // Walk the chain both ways from the deepest point's arc (a closed rim: at most once round).
+  const int k0 = cand[deepest].slave_segment, n = slave.num_segments();
+  int lo = k0, hi = k0, length = 1;
+  for (int j; length < n && (j = slave.segment_before[slave.segment_a[lo]]) >= 0 && has_point(j);
+       ++length)
+    lo = j;
+  for (int j; length < n && (j = slave.segment_after[slave.segment_b[hi]]) >= 0 && has_point(j);
+       ++length)
+    hi = j;
+  auto in_chain = [&](int k) {
+    for (int j = lo, steps = 0; steps < length; ++steps) {
+      if (j == k) return true;
+      j = slave.segment_after[slave.segment_b[j]];
+    }
+    return false;
+  };
+  for (const ArcContact& c : cand)
+    if (in_chain(c.slave_segment)) pass.arc_blend.push_back(c);
+  // Nodes the arc contact stands for: the blend's arcs' ends, and every node between two convex
+  // arcs (an interior point of the smooth rim; node contact there would count the overlap twice).
+  for (const ArcContact& b : pass.arc_blend) {
+    pass.node_owned[slave.segment_a[b.slave_segment]] = 1;
+    pass.node_owned[slave.segment_b[b.slave_segment]] = 1;
+  }
   for (int i = 0; i < slave.num_nodes(); ++i) {
     const int before = slave.segment_before[i], after = slave.segment_after[i];
-    const bool rim = before >= 0 && after >= 0 && slave.segment_curvature[before] > 0.0 &&
-                     slave.segment_curvature[after] > 0.0;
-    if (rim || before == chosen || after == chosen) pass.node_owned[i] = 1;
+    if (before >= 0 && after >= 0 && slave.segment_curvature[before] > 0.0 &&
+        slave.segment_curvature[after] > 0.0)
+      pass.node_owned[i] = 1;
+  }
+}
+
+namespace {
+// A blend point's weight: vanishes, with its slope, where the point leaves either span, so points
+// join and leave the blend smoothly. T = double or a Jet (its gradient).
+template <typename T>
+T BlendWeight(const T& xi, const T& xi_master) {
+  const T w = xi * (1.0 - xi) * xi_master * (1.0 - xi_master);
+  return w * w;
+}
+}  // namespace
+
+void ContactPair::BlendArcContacts(Pass& pass, const double* x, const double* y) const {
+  // p = sum w_i p_i / sum w_i over the blend's points, p_i = -gap_i: its gradient, weights
+  // included, by forward-mode automatic differentiation of each point's geometry over its 8
+  // coordinates (ceres::Jet): grad_i = (w_i grad p_i + (p_i - p) grad w_i) / sum w. With that the
+  // normal force -f_n grad p is conservative for the blended penalty k p^2 / 2.
+  using Jet = ceres::Jet<double, 8>;
+  const ContactSurface& slave = pass.slave;
+  const ContactSurface& master = pass.master;
+  double total = 0.0;
+  for (ArcContact& c : pass.arc_blend) {
+    c.weight = BlendWeight(c.at.xi, c.at.xi_master);
+    total += c.weight;
+  }
+  if (!(total > 0.0)) {  // every point exactly at a span end: the deepest alone, weight fixed
+    size_t deepest = 0;
+    for (size_t i = 1; i < pass.arc_blend.size(); ++i)
+      if (pass.arc_blend[i].at.gap < pass.arc_blend[deepest].at.gap) deepest = i;
+    pass.arc_blend[0] = pass.arc_blend[deepest];
+    pass.arc_blend.resize(1);
+    pass.arc_blend[0].weight = total = 1.0;
+  }
+  double penetration = 0.0;
+  for (ArcContact& c : pass.arc_blend) {
+    c.weight /= total;
+    penetration -= c.weight * c.at.gap;
+  }
+  const bool fixed_weight = pass.arc_blend.size() == 1;
+  for (ArcContact& c : pass.arc_blend) {
+    const int nodes[4] = {slave.nodes[slave.segment_a[c.slave_segment]],
+                          slave.nodes[slave.segment_b[c.slave_segment]],
+                          master.nodes[master.segment_a[c.master_segment]],
+                          master.nodes[master.segment_b[c.master_segment]]};
+    Jet s[4], m[4];
+    for (int j = 0; j < 2; ++j) {
+      s[2 * j] = Jet(x[nodes[j]], 2 * j);
+      s[2 * j + 1] = Jet(y[nodes[j]], 2 * j + 1);
+      m[2 * j] = Jet(x[nodes[2 + j]], 4 + 2 * j);
+      m[2 * j + 1] = Jet(y[nodes[2 + j]], 5 + 2 * j);
+    }
+    const double km = master.curved() ? master.segment_curvature[c.master_segment] : 0.0;
+    ArcPair<Jet> g;
+    ArcClosestPoints(s, slave.segment_curvature[c.slave_segment], m, km, &g);
+    const Jet w = BlendWeight(g.xi, g.xi_master);
+    for (int d = 0; d < 8; ++d) {
+      c.grad[d] = -c.weight * g.gap.v[d];
+      if (!fixed_weight) c.grad[d] += (-c.at.gap - penetration) * w.v[d] / total;
+    }
   }
 }
 
 void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) {
   const ContactSurface& slave = pass.slave;
   const ContactSurface& master = pass.master;
+  const double* x = state.x.data();
+  const double* y = state.y.data();
   const double* vx = state.vx.data();
   const double* vy = state.vy.data();
   const double* mass = state.mass.data();
-  const int n = slave.num_segments();
-  auto touching = [&](int k) {
-    const ArcContact& c = pass.arcs[k];
-    return c.valid && c.gap < 0.0 && -c.gap <= pass.capture;
-  };
-  for (int k = 0; k < n; ++k) {
-    Slot& slot = pass.arc_slots[k];
-    slot = Slot{};
-    if (!touching(k)) continue;
-    double& spring = pass.arc_tangential_force[k];
-    if (spring == 0.0) {
-      // Hand-over: the contact walked here from a neighbour arc, or from a node.
-      const int before = slave.segment_before[slave.segment_a[k]];
-      const int after = slave.segment_after[slave.segment_b[k]];
-      for (int j : {before, after}) {
-        if (j >= 0 && !touching(j) && pass.arc_tangential_force[j] != 0.0) {
-          std::swap(spring, pass.arc_tangential_force[j]);
-          break;
-        }
-      }
-      for (int local : {slave.segment_a[k], slave.segment_b[k]}) {
-        if (spring == 0.0 && pass.slots[local].segment < 0 && pass.tangential_force[local] != 0.0)
-          std::swap(spring, pass.tangential_force[local]);
-      }
+  Slot& slot = pass.arc_slot;
+  slot = Slot{};
+  double penetration = 0.0;
+  for (const ArcContact& c : pass.arc_blend) penetration -= c.weight * c.at.gap;
+  if (!pass.arc_blend.empty() && penetration > 0.0 && penetration <= pass.capture) {
+    if (pass.arc_spring == 0.0) {
+      // Hand-over: the contact walked here from a node.
+      for (const ArcContact& c : pass.arc_blend)
+        for (int local : {slave.segment_a[c.slave_segment], slave.segment_b[c.slave_segment]})
+          if (pass.arc_spring == 0.0 && pass.slots[local].segment < 0 &&
+              pass.tangential_force[local] != 0.0)
+            std::swap(pass.arc_spring, pass.tangential_force[local]);
     }
-    const ArcContact& c = pass.arcs[k];
-    const int sa = slave.nodes[slave.segment_a[k]], sb = slave.nodes[slave.segment_b[k]];
-    const int a = master.nodes[master.segment_a[c.master_segment]];
-    const int b = master.nodes[master.segment_b[c.master_segment]];
-    const double ws = c.xi, wa = 1.0 - c.xi_master, wb = c.xi_master;
-    const double inv_ms =
-        (1.0 - ws) * (1.0 - ws) * InverseMass(mass[sa]) + ws * ws * InverseMass(mass[sb]);
-    const double inv_mm = wa * wa * InverseMass(mass[a]) + wb * wb * InverseMass(mass[b]);
-    const double k_pen = SegmentStiffness(
-        pass, c.master_segment, std::min(mass[sa], mass[sb]), std::min(mass[a], mass[b]));
-    ContactLaw(k_pen,
-               -c.gap,
-               c.nx,
-               c.ny,
-               (1.0 - ws) * vx[sa] + ws * vx[sb] - wa * vx[a] - wb * vx[b],
-               (1.0 - ws) * vy[sa] + ws * vy[sb] - wa * vy[a] - wb * vy[b],
-               inv_ms + inv_mm,
+    // Blended stiffness, mass and normal; relative velocities conjugate to how the forces are
+    // spread: the normal one is -dp/dt, the tangential one the arc points' slip.
+    double k = 0.0, inverse_mass = 0.0, nx = 0.0, ny = 0.0, vn = 0.0;
+    for (const ArcContact& c : pass.arc_blend) {
+      const int nodes[4] = {slave.nodes[slave.segment_a[c.slave_segment]],
+                            slave.nodes[slave.segment_b[c.slave_segment]],
+                            master.nodes[master.segment_a[c.master_segment]],
+                            master.nodes[master.segment_b[c.master_segment]]};
+      const double ws = c.at.xi, wm = c.at.xi_master;
+      k += c.weight * SegmentStiffness(pass,
+                                       c.master_segment,
+                                       std::min(mass[nodes[0]], mass[nodes[1]]),
+                                       std::min(mass[nodes[2]], mass[nodes[3]]));
+      inverse_mass += c.weight * ((1.0 - ws) * (1.0 - ws) * InverseMass(mass[nodes[0]]) +
+                                  ws * ws * InverseMass(mass[nodes[1]]) +
+                                  (1.0 - wm) * (1.0 - wm) * InverseMass(mass[nodes[2]]) +
+                                  wm * wm * InverseMass(mass[nodes[3]]));
+      nx += c.weight * c.at.nx;
+      ny += c.weight * c.at.ny;
+      for (int j = 0; j < 4; ++j)
+        vn -= c.grad[2 * j] * vx[nodes[j]] + c.grad[2 * j + 1] * vy[nodes[j]];
+    }
+    const double nl = std::hypot(nx, ny);
+    nx /= nl, ny /= nl;
+    double vt = 0.0;
+    for (const ArcContact& c : pass.arc_blend) {
+      const int sa = slave.nodes[slave.segment_a[c.slave_segment]];
+      const int sb = slave.nodes[slave.segment_b[c.slave_segment]];
+      const int a = master.nodes[master.segment_a[c.master_segment]];
+      const int b = master.nodes[master.segment_b[c.master_segment]];
+      double tsx, tsy, tmx, tmy;
+      ArcPointVelocity(x, y, vx, vy, sa, sb, c.at.xi, c.at.px, c.at.py, &tsx, &tsy);
+      ArcPointVelocity(x, y, vx, vy, a, b, c.at.xi_master, c.at.qx, c.at.qy, &tmx, &tmy);
+      vt += c.weight * (-(tsx - tmx) * ny + (tsy - tmy) * nx);  // along t = (-ny, nx)
+    }
+    ContactLaw(k,
+               penetration,
+               nx,
+               ny,
+               vn * nx - vt * ny,
+               vn * ny + vt * nx,
+               inverse_mass,
                dt,
-               &spring,
-               &pass.arc_tangential_stiffness[k],
+               &pass.arc_spring,
+               &pass.arc_spring_stiffness,
                &slot);
-    slot.segment = c.master_segment;
-    slot.xi = c.xi_master;
+    slot.segment = pass.arc_blend.front().master_segment;
+    slot.xi = pass.arc_blend.front().at.xi_master;
+  } else {
+    // Out of contact: the spring's energy is dissipated, as for a node.
+    slot.friction_work += ReleaseSpring(&pass.arc_spring, pass.arc_spring_stiffness);
   }
-  // Springs nobody took over are released (their energy is dissipated, as for a node).
-  for (int k = 0; k < n; ++k)
-    if (pass.arc_slots[k].segment < 0)
-      pass.arc_slots[k].friction_work +=
-          ReleaseSpring(&pass.arc_tangential_force[k], pass.arc_tangential_stiffness[k]);
   for (int i = 0; i < slave.num_nodes(); ++i)
     if (pass.slots[i].segment < 0)
       pass.slots[i].friction_work +=
@@ -575,9 +686,9 @@ std::string ContactPair::SaveState() const {
       Put(&out, p.tangential_stiffness[i]);
       Put(&out, p.gap[i]);
     }
-    for (size_t k = 0; k < p.arcs.size(); ++k) {  // curved slave surface only
-      Put(&out, p.arc_tangential_force[k]);
-      Put(&out, p.arc_tangential_stiffness[k]);
+    if (p.slave.curved()) {
+      Put(&out, p.arc_spring);
+      Put(&out, p.arc_spring_stiffness);
     }
   }
   return out;
@@ -603,9 +714,9 @@ void ContactPair::LoadState(const std::string& bytes) {
       p.tangential_stiffness[i] = Get<double>(bytes, &pos, name_);
       p.gap[i] = Get<double>(bytes, &pos, name_);
     }
-    for (size_t k = 0; k < p.arcs.size(); ++k) {
-      p.arc_tangential_force[k] = Get<double>(bytes, &pos, name_);
-      p.arc_tangential_stiffness[k] = Get<double>(bytes, &pos, name_);
+    if (p.slave.curved()) {
+      p.arc_spring = Get<double>(bytes, &pos, name_);
+      p.arc_spring_stiffness = Get<double>(bytes, &pos, name_);
     }
     p.grid = SegmentGrid{};  // rebuilt at the next step
   }

@@ -153,5 +153,103 @@ TEST(CurvedContactTest, ForcesAreConservativeAlongARollingPath) {
   EXPECT_NEAR(work, -(e1 - e0), 1e-4 * scale) << "work " << work << " dE " << e1 - e0;
 }
 
+TEST(CurvedContactTest, ForcesAreConservativeWhileTheSurfacesDeform) {
+  // A rigid path cannot tell how the force is shared between an arc's two nodes beyond its
+  // resultant and moment; a deforming one can: stretching a chord of fixed curvature moves its arc
+  // (the sagitta grows with the chord), so the pair of forces along the chord does work. Closed
+  // cycle (press, stretch both surfaces tangentially out of phase, release): the work on all
+  // nodes must come back to zero.
+  Scene s = MakeScene(true);
+  ContactPair pair("roller/bore", s.roller, s.bore, Options());
+  const double theta = -1.2;
+  std::vector<double> bx(s.state.x.begin() + kRim, s.state.x.end());
+  std::vector<double> by(s.state.y.begin() + kRim, s.state.y.end());
+  const int n = 4000, nodes = kRim + kRace;
+  double work = 0, peak = 0;
+  std::vector<double> fx_prev, fy_prev, x_prev, y_prev;
+  for (int step = 0; step <= n; ++step) {
+    const double u = static_cast<double>(step) / n;
+    const double d = kBore - kR + 10e-6 + 5e-6 * std::sin(2 * kPi * u);
+    const double strain = 2e-3 * std::cos(2 * kPi * u);  // tangential, near the contact
+    PlaceRoller(&s, d, theta, 0.013);
+    const double cx = d * std::cos(theta), cy = d * std::sin(theta);
+    for (int i = 0; i < kRim;
+         ++i) {  // slide each node along the rim by strain * R * sin(a - theta)
+      const double a = std::atan2(s.state.y[i] - cy, s.state.x[i] - cx);
+      const double b = a + strain * std::sin(a - theta);
+      s.state.x[i] = cx + kR * std::cos(b);
+      s.state.y[i] = cy + kR * std::sin(b);
+    }
+    for (int j = 0; j < kRace; ++j) {  // and the bore's, out of phase
+      const double a = std::atan2(by[j], bx[j]);
+      const double b = a - 0.5 * strain * std::sin(a - theta);
+      s.state.x[kRim + j] = kBore * std::cos(b);
+      s.state.y[kRim + j] = kBore * std::sin(b);
+    }
+    const Force f = Evaluate(pair, &s, d, theta);
+    peak = std::max(peak, f.stored);
+    if (step > 0)
+      for (int i = 0; i < nodes; ++i)
+        work += 0.5 * (s.state.fx[i] + fx_prev[i]) * (s.state.x[i] - x_prev[i]) +
+                0.5 * (s.state.fy[i] + fy_prev[i]) * (s.state.y[i] - y_prev[i]);
+    fx_prev.assign(s.state.fx.begin(), s.state.fx.end());
+    fy_prev.assign(s.state.fy.begin(), s.state.fy.end());
+    x_prev.assign(s.state.x.begin(), s.state.x.end());
+    y_prev.assign(s.state.y.begin(), s.state.y.end());
+  }
+  EXPECT_NEAR(work, 0.0, 1e-5 * peak)
+      << "work over the cycle " << work << " J, peak stored " << peak;
+}
+
+// A rim node dented by the load (the valley a coarse mesh gets under a point load): near it two
+// arcs find their closest point in span and the contact blends them. Rolling the dent through the
+// contact and back, pressing and releasing, the nodal forces change smoothly (halving the steps
+// halves the largest change between two steps; taking only the deeper point jumped from one arc's
+// nodes to the other's) and the work over the closed path is zero.
+struct PathResult {
+  double work = 0, peak = 0, max_change = 0;
+};
+PathResult RollOverADent(int n) {
+  Scene s = MakeScene(true);
+  ContactPair pair("roller/bore", s.roller, s.bore, Options());
+  const double theta = -1.2, dent = 1.5e-6;
+  PathResult r;
+  std::vector<double> fx_prev, fy_prev, x_prev, y_prev;
+  for (int step = 0; step <= n; ++step) {
+    const double u = static_cast<double>(step) / n;
+    const double d = kBore - kR + 6e-6 + 3e-6 * std::sin(2 * kPi * u);
+    const double phi = theta + 0.12 * std::sin(2 * kPi * u + 0.3);  // node 0 sweeps past theta
+    PlaceRoller(&s, d, theta, phi);
+    const double cx = d * std::cos(theta), cy = d * std::sin(theta);
+    s.state.x[0] -= dent * (s.state.x[0] - cx) / kR;
+    s.state.y[0] -= dent * (s.state.y[0] - cy) / kR;
+    const Force f = Evaluate(pair, &s, d, theta);
+    r.peak = std::max(r.peak, f.stored);
+    if (step > 0) {
+      double change = 0;
+      for (int i = 0; i < kRim + kRace; ++i) {
+        r.work += 0.5 * (s.state.fx[i] + fx_prev[i]) * (s.state.x[i] - x_prev[i]) +
+                  0.5 * (s.state.fy[i] + fy_prev[i]) * (s.state.y[i] - y_prev[i]);
+        change =
+            std::max(change, std::hypot(s.state.fx[i] - fx_prev[i], s.state.fy[i] - fy_prev[i]));
+      }
+      r.max_change = std::max(r.max_change, change);
+    }
+    fx_prev.assign(s.state.fx.begin(), s.state.fx.end());
+    fy_prev.assign(s.state.fy.begin(), s.state.fy.end());
+    x_prev.assign(s.state.x.begin(), s.state.x.end());
+    y_prev.assign(s.state.y.begin(), s.state.y.end());
+  }
+  return r;
+}
+
+TEST(CurvedContactTest, ADentedNodeRollsThroughTheContactSmoothlyAndConservatively) {
+  const PathResult coarse = RollOverADent(2000), fine = RollOverADent(4000);
+  EXPECT_NEAR(fine.work, 0.0, 1e-6 * fine.peak) << "work over the cycle " << fine.work;
+  EXPECT_LT(fine.max_change, 0.6 * coarse.max_change)
+      << "largest nodal force change per step: " << coarse.max_change << " N at 2000 steps, "
+      << fine.max_change << " N at 4000";
+}
+
 }  // namespace
 }  // namespace spallkit::contact
