@@ -450,17 +450,15 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
   };
   // Walk the chain both ways from the deepest point's arc (a closed rim: at most once round).
   const int k0 = cand[deepest].slave_segment, n = slave.num_segments();
+  auto previous = [&](int k) { return slave.segment_before[slave.segment_a[k]]; };
+  auto next = [&](int k) { return slave.segment_after[slave.segment_b[k]]; };
   int lo = k0, hi = k0, length = 1;
-  for (int j; length < n && (j = slave.segment_before[slave.segment_a[lo]]) >= 0 && has_point(j);
-       ++length)
-    lo = j;
-  for (int j; length < n && (j = slave.segment_after[slave.segment_b[hi]]) >= 0 && has_point(j);
-       ++length)
-    hi = j;
+  while (length < n && previous(lo) >= 0 && has_point(previous(lo))) lo = previous(lo), ++length;
+  while (length < n && next(hi) >= 0 && has_point(next(hi))) hi = next(hi), ++length;
   auto in_chain = [&](int k) {
     for (int j = lo, steps = 0; steps < length; ++steps) {
       if (j == k) return true;
-      j = slave.segment_after[slave.segment_b[j]];
+      j = next(j);
     }
     return false;
   };
