@@ -147,7 +147,7 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
       return std::make_unique<contact::ContactPair>(
           contact::MakeContactPair(mesh, surf, master, bulk, t, o));
     };
-    if (options_.curved_race_contact) {
+    if (scene_.model.race_contact == "curved") {
       // Rim segments on the roller's circle and the raceways' segments become arcs; the spall's
       // walls and bottom stay straight, so its corners touch as vertices.
       const double cx = mesh_.pitch_radius_m * std::cos(mesh_.roller_angles_rad[j]);
@@ -295,7 +295,8 @@ double BearingModel::TheoreticalCageSpeed(double t) const {
 
 std::vector<std::string> BearingModel::Warnings() const {
   std::vector<std::string> out;
-  if (hybrid_) return out;  // exact circles: no facets
+  // Exact circles (hybrid) or rims touching as arcs (curved race contact): no facets to stand on.
+  if (hybrid_ || scene_.model.race_contact == "curved") return out;
   const SceneFriction& f = scene_.friction;
   const double mu = f.decay_s_m > 0.0 ? f.mu_dynamic : f.mu_static;
   if (!(mu > 0.0)) return out;  // frictionless: nothing drives the rollers anyway
@@ -318,7 +319,7 @@ std::vector<std::string> BearingModel::Warnings() const {
      << " they may stand on their facets and slide instead of rolling (mu x facets = "
      << mu * facets << " < " << kRollingMinMuFacets
      << "; docs/BEARING_MODEL.md); refine mesh.contact_size_mm to <= " << needed_spacing * 1e3
-     << " or use model.fidelity = \"hybrid\"";
+     << ", or use model.race_contact = \"curved\" or model.fidelity = \"hybrid\"";
   out.push_back(os.str());
   return out;
 }

@@ -53,9 +53,6 @@ struct BearingModelOptions {
   double cage_penalty_scale = 0.1;
   // Normal contact damping, fraction of critical of each contact spring.
   double contact_damping_ratio = 0.1;
-  // Roller-race pairs on the circles the nodes lie on (contact_pair.h, curved surfaces): the
-  // rollers' rim segments and the raceways as arcs, so a faceted roller touches as a circle.
-  bool curved_race_contact = false;
   // Load ramp time as a fraction of the scene's ramp_s (1: load and speed ramp together).
   double load_ramp_fraction = 1.0;
   // Hybrid model (scene model.fidelity = "hybrid") contact options.

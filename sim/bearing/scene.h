@@ -116,6 +116,10 @@ struct SceneModel {
   // fixed, so the outer ring is held rigidly over the seat (Table 1 gives the adapter no
   // material; docs/BEARING_MODEL.md, "Harris-Jones with the real housing").
   std::string adapter = "elastic";
+  // Roller-race contact of the full FE ("fe" only): "faceted" (node to segment on the meshes'
+  // chords) or "curved" (roller rims and raceways as circular arcs, docs/CONTACT.md "Curved
+  // surfaces": no facet bump as a roller turns).
+  std::string race_contact = "faceted";
 };
 
 struct SceneSolver {

@@ -16,14 +16,16 @@ namespace spallkit::contact {
 
 // The helpers are templates so that contact_pair.cc can evaluate the same geometry on automatic-
 // differentiation numbers (ceres::Jet) for the exact gradient of a penetration; T = double
-// elsewhere. (Unqualified sqrt / hypot: std's for double, ceres' by argument lookup for Jet.)
+// elsewhere. (Unqualified sqrt: std's for double, ceres' by argument lookup for Jet. Lengths are
+// sqrt(x^2 + y^2), not hypot: coordinates are metres, nothing to overflow, and libm's hypot was
+// 15 % of a curved bearing run.)
 
 // Outward unit normal (dy, -dx) / L of the chord a -> b (body on the left); returns L. Zero
 // normal for a zero-length chord.
 template <typename T>
 T ChordNormal(const T& ax, const T& ay, const T& bx, const T& by, T* nx, T* ny) {
-  using std::hypot;
-  const T ex = bx - ax, ey = by - ay, l = hypot(ex, ey);
+  using std::sqrt;
+  const T ex = bx - ax, ey = by - ay, l = sqrt(ex * ex + ey * ey);
   *nx = l > 0.0 ? T(ey / l) : T(0.0);
   *ny = l > 0.0 ? T(-ex / l) : T(0.0);
   return l;
@@ -79,23 +81,22 @@ struct ArcPair {
   T px, py, qx, qy;  // on the slave arc / the master segment
   T xi, xi_master;   // their chord parameters (in both spans iff both in [0, 1])
 };
+// `marc` is the master's arc, or null for a straight master segment m.
 template <typename T>
-bool ArcClosestPoints(const T s[4], double ks, const T m[4], double km, ArcPair<T>* out) {
-  using std::hypot;
-  const Arc<T> arc = ArcThrough(s[0], s[1], s[2], s[3], ks);
+bool ArcClosestPoints(const Arc<T>& arc, const T m[4], const Arc<T>* marc, ArcPair<T>* out) {
+  using std::sqrt;
   ArcPair<T>& c = *out;
-  if (km != 0.0) {
-    const Arc<T> marc = ArcThrough(m[0], m[1], m[2], m[3], km);
-    const T dx = arc.cx - marc.cx, dy = arc.cy - marc.cy, d = hypot(dx, dy);
-    if (!(d > 0.0)) return false;
-    const T ux = dx / d, uy = dy / d;
-    c.qx = marc.cx + marc.radius * ux;
-    c.qy = marc.cy + marc.radius * uy;
-    if (marc.convex) {  // two convex circles: outside each other
-      c.gap = d - arc.radius - marc.radius;
+  if (marc) {
+    const T dx = arc.cx - marc->cx, dy = arc.cy - marc->cy, d2 = dx * dx + dy * dy;
+    if (!(d2 > 0.0)) return false;
+    const T d = sqrt(d2), ux = dx / d, uy = dy / d;
+    c.qx = marc->cx + marc->radius * ux;
+    c.qy = marc->cy + marc->radius * uy;
+    if (marc->convex) {  // two convex circles: outside each other
+      c.gap = d - arc.radius - marc->radius;
       c.nx = ux, c.ny = uy;
     } else {  // the slave circle inside the master's
-      c.gap = marc.radius - d - arc.radius;
+      c.gap = marc->radius - d - arc.radius;
       c.nx = -ux, c.ny = -uy;
     }
     c.px = arc.cx - arc.radius * c.nx;
@@ -108,8 +109,18 @@ bool ArcClosestPoints(const T s[4], double ks, const T m[4], double km, ArcPair<
     c.qx = c.px - c.gap * c.nx;
     c.qy = c.py - c.gap * c.ny;
   }
-  c.xi = ChordParameter(s[0], s[1], s[2], s[3], c.px, c.py);
   c.xi_master = ChordParameter(m[0], m[1], m[2], m[3], c.qx, c.qy);
+  return true;
+}
+// The same from the segments' nodes s (slave, curvature ks > 0) and m (curvature km, 0: straight),
+// with the slave's chord parameter too.
+template <typename T>
+bool ArcClosestPoints(const T s[4], double ks, const T m[4], double km, ArcPair<T>* out) {
+  const Arc<T> arc = ArcThrough(s[0], s[1], s[2], s[3], ks);
+  Arc<T> marc;
+  if (km != 0.0) marc = ArcThrough(m[0], m[1], m[2], m[3], km);
+  if (!ArcClosestPoints(arc, m, km != 0.0 ? &marc : nullptr, out)) return false;
+  out->xi = ChordParameter(s[0], s[1], s[2], s[3], out->px, out->py);
   return true;
 }
 

@@ -146,6 +146,10 @@ ContactPair::ContactPair(std::string name,
       p.arc_candidates.reserve(4 * m);  // no allocation in the time loop
       p.arc_blend.reserve(4 * m);
       p.node_owned.assign(n, 0);
+      if (p.master.curved()) {
+        p.master_arcs.assign(p.master.num_segments(), Arc<double>{});
+        p.master_arc_stamp.assign(p.master.num_segments(), -1);
+      }
     }
     p.tangential_force.assign(n, 0.0);
     p.tangential_stiffness.assign(n, 0.0);
@@ -410,24 +414,31 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
   std::fill(pass.node_owned.begin(), pass.node_owned.end(), 0);
   pass.arc_candidates.clear();
   pass.arc_blend.clear();
+  ++pass.arc_stamp;
   for (int k = 0; k < slave.num_segments(); ++k) {
     const double kappa = slave.segment_curvature[k];
     if (!(kappa > 0.0)) continue;  // straight or concave slave segments touch by their nodes
     const int la = slave.segment_a[k], lb = slave.segment_b[k];
     const int sa = slave.nodes[la], sb = slave.nodes[lb];
+    // Search from the chord's middle point (within the sagitta, << the grid's margin, of the
+    // arc's); most arcs of a rim have no candidate and cost no more than this lookup.
+    const std::span<const int> candidates =
+        pass.grid.Candidates(0.5 * (x[sa] + x[sb]), 0.5 * (y[sa] + y[sb]));
+    if (candidates.empty()) continue;
     const Arc arc = ArcThrough(x[sa], y[sa], x[sb], y[sb], kappa);
-    // Search from the arc's middle point.
-    double mx = 0.5 * (x[sa] + x[sb]) - arc.cx, my = 0.5 * (y[sa] + y[sb]) - arc.cy;
-    const double ml = std::hypot(mx, my);
-    if (ml > 0.0) mx = arc.cx + arc.radius * mx / ml, my = arc.cy + arc.radius * my / ml;
-    const double sp[4] = {x[sa], y[sa], x[sb], y[sb]};
-    for (int m : pass.grid.Candidates(mx, my)) {
+    for (int m : candidates) {
       const int ma = master.nodes[master.segment_a[m]], mb = master.nodes[master.segment_b[m]];
-      const double km = master.curved() ? master.segment_curvature[m] : 0.0;
       const double mp[4] = {x[ma], y[ma], x[mb], y[mb]};
+      const bool master_arc = master.curved() && master.segment_curvature[m] != 0.0;
+      if (master_arc && pass.master_arc_stamp[m] != pass.arc_stamp) {  // once per step
+        pass.master_arcs[m] = ArcThrough(mp[0], mp[1], mp[2], mp[3], master.segment_curvature[m]);
+        pass.master_arc_stamp[m] = pass.arc_stamp;
+      }
       ArcPair<double> g;
-      if (!ArcClosestPoints(sp, kappa, mp, km, &g)) continue;
-      if (!(g.xi >= 0.0 && g.xi <= 1.0 && g.xi_master >= 0.0 && g.xi_master <= 1.0)) continue;
+      if (!ArcClosestPoints(arc, mp, master_arc ? &pass.master_arcs[m] : nullptr, &g)) continue;
+      if (!(g.xi_master >= 0.0 && g.xi_master <= 1.0)) continue;
+      g.xi = ChordParameter(x[sa], y[sa], x[sb], y[sb], g.px, g.py);
+      if (!(g.xi >= 0.0 && g.xi <= 1.0)) continue;
       ArcContact c;
       c.at = g;
       c.slave_segment = k;

@@ -148,7 +148,10 @@ class ContactPair : public solver::ForceContributor {
     std::vector<ArcContact> arc_candidates, arc_blend;
     Slot arc_slot;
     double arc_spring = 0.0, arc_spring_stiffness = 0.0;
-    std::vector<char> node_owned;  // per slave node: the arc contact stands for it
+    std::vector<char> node_owned;          // per slave node: the arc contact stands for it
+    std::vector<Arc<double>> master_arcs;  // curved master: its arcs, computed once per step
+    std::vector<long> master_arc_stamp;    // the step (arc_stamp) each was computed at
+    long arc_stamp = 0;
     SegmentGrid grid;
     std::vector<double> x_built, y_built;  // master node positions at the last grid build
     std::vector<double> tangential_force;  // per slave node, along the master tangent

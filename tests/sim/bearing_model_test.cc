@@ -32,6 +32,7 @@ TEST(BearingModelTest, WarnsWhenFeRollersWouldStandOnTheirFacets) {
       warnings({"mesh.size_mm=0.5", "friction.mu_static=0.1", "friction.mu_dynamic=0.08"}).empty());
   EXPECT_TRUE(warnings({"mesh.size_mm=0.5", "mesh.contact_size_mm=0.25"}).empty());
   EXPECT_TRUE(warnings({"mesh.size_mm=0.5", "model.fidelity=hybrid"}).empty());
+  EXPECT_TRUE(warnings({"mesh.size_mm=0.5", "model.race_contact=curved"}).empty());
 }
 
 TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {

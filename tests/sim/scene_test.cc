@@ -192,6 +192,14 @@ TEST(Scene, SpallLengthDefaultsToThroughLengthAndPartialNeedsTheHybridModel) {
       "defects.0.length_mm: must be > 0");
 }
 
+TEST(Scene, RaceContactIsFacetedOrCurved) {
+  EXPECT_EQ(ParseScene("", "default.toml").model.race_contact, "faceted");
+  EXPECT_EQ(ParseScene("[model]\nrace_contact = \"curved\"\n", "c.toml").model.race_contact,
+            "curved");
+  ExpectOneLineError(ErrorOf("[model]\nrace_contact = \"round\"\n"),
+                     "model.race_contact: expected \"faceted\" or \"curved\", got \"round\"");
+}
+
 TEST(Scene, MissingFileIsInputError) {
   EXPECT_THROW(LoadScene("/nonexistent/scene.toml"), InputError);
 }
