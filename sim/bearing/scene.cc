@@ -480,7 +480,7 @@ Scene ParseScene(const std::string& toml_text,
     scene.model.adapter = s.String("adapter", "elastic");
     if (scene.model.adapter != "elastic" && scene.model.adapter != "rigid")
       s.Fail("adapter", "expected \"elastic\" or \"rigid\", got \"" + scene.model.adapter + "\"");
-    scene.model.race_contact = s.String("race_contact", "faceted");
+    scene.model.race_contact = s.String("race_contact", "curved");
     if (scene.model.race_contact != "faceted" && scene.model.race_contact != "curved")
       s.Fail("race_contact",
              "expected \"faceted\" or \"curved\", got \"" + scene.model.race_contact + "\"");

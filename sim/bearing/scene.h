@@ -119,7 +119,7 @@ struct SceneModel {
   // Roller-race contact of the full FE ("fe" only): "faceted" (node to segment on the meshes'
   // chords) or "curved" (roller rims and raceways as circular arcs, docs/CONTACT.md "Curved
   // surfaces": no facet bump as a roller turns).
-  std::string race_contact = "faceted";
+  std::string race_contact = "curved";
 };
 
 struct SceneSolver {

@@ -26,15 +26,21 @@ TEST(BearingModelTest, WarnsWhenFeRollersWouldStandOnTheirFacets) {
   auto warnings = [](std::vector<std::string> sets) {
     return BearingModel(LoadScene(Scene0(), sets)).Warnings();
   };
-  const std::vector<std::string> coarse = warnings({"mesh.size_mm=0.5"});
+  const std::vector<std::string> coarse =
+      warnings({"mesh.size_mm=0.5", "model.race_contact=faceted"});
   ASSERT_EQ(coarse.size(), 1u);
   EXPECT_NE(coarse[0].find("40 facets"), std::string::npos) << coarse[0];
   EXPECT_NE(coarse[0].find("<= 0.255"), std::string::npos) << coarse[0];
+  EXPECT_TRUE(warnings({"mesh.size_mm=0.5",
+                        "model.race_contact=faceted",
+                        "friction.mu_static=0.1",
+                        "friction.mu_dynamic=0.08"})
+                  .empty());
   EXPECT_TRUE(
-      warnings({"mesh.size_mm=0.5", "friction.mu_static=0.1", "friction.mu_dynamic=0.08"}).empty());
-  EXPECT_TRUE(warnings({"mesh.size_mm=0.5", "mesh.contact_size_mm=0.25"}).empty());
+      warnings({"mesh.size_mm=0.5", "model.race_contact=faceted", "mesh.contact_size_mm=0.25"})
+          .empty());
   EXPECT_TRUE(warnings({"mesh.size_mm=0.5", "model.fidelity=hybrid"}).empty());
-  EXPECT_TRUE(warnings({"mesh.size_mm=0.5", "model.race_contact=curved"}).empty());
+  EXPECT_TRUE(warnings({"mesh.size_mm=0.5"}).empty());  // curved race contact, the default
 }
 
 TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
@@ -173,24 +179,50 @@ TEST_F(StaticLoadTest, OuterRaceContactsCarryTheRadialLoad) {
   for (int j = 1; j < 13; ++j) EXPECT_GT(q_[0], q_[j]);
 }
 
-// Issue #4's criterion: load-zone forces within 10 % of Harris-Jones. NOT MET by the full-FE
-// model at affordable meshes, nor at 0.25 mm (docs/BEARING_MODEL.md, "Verification status"): at
-// 1.0 and 0.5 mm the roller on the load line carries ~4.7-5.4 kN against 3563 N and the +-55 deg
-// rollers almost nothing (their approach is the size of the rim facets' sag; the outer ring is
-// supported by the adapter only over +-50 deg). The hybrid model meets it on a stiff housing.
-// Kept as a disabled test so that it runs with --gtest_also_run_disabled_tests.
-TEST_F(StaticLoadTest, DISABLED_LoadZoneWithinTenPercentOfHarrisJones) {
-  const Scene& scene = model_->scene();
+// Issue #4's criterion: load-zone forces within 10 % of Harris-Jones, on the housing Harris-Jones
+// assumes (a rigid one: model.adapter = "rigid") and the curved race contact (the default). With
+// faceted contact the roller on the load line carried +31 to +51 % and the +-55.4 deg rollers
+// almost nothing (their approach is the size of the facets' sag). On the elastic steel adapter the
+// +-55.4 deg rollers carry -28 % (the ring bends beyond the +-50 deg seat; docs/BEARING_MODEL.md).
+// Static, load ramped over 1 ms, forces averaged over 2-3 ms. ~15 s.
+TEST(HarrisJonesTest, FullFeLoadZoneWithinTenPercentOnARigidHousing) {
+  const Scene scene = LoadScene(Scene0(),
+                                {"mesh.size_mm=0.5",
+                                 "defects=[]",
+                                 "model.adapter=rigid",
+                                 "operation.speed_rpm=0",
+                                 "operation.ramp_s=0.001",
+                                 "solver.threads=2"});
+  BearingModel model(scene);
+  const int z = model.num_rollers();
+  std::vector<double> q(z, 0.0);
+  int n = 0;
+  for (auto& s = model.solver(); s.time() < 3e-3;) {
+    s.Step();
+    if (s.time() > 2e-3) {
+      for (int j = 0; j < z; ++j) q[j] += model.RollerOuterForce(j);
+      ++n;
+    }
+  }
   LoadDistributionOptions o;
   o.radial_load_n = scene.operation.radial_load_n;
   o.roller_length_m = scene.geometry.thickness_m;
   o.diametral_clearance_m = scene.geometry.diametral_clearance_m;
   LoadDistributionSummary hj;
   SolveLoadDistribution(o, scene.geometry.bearing, &hj);
-  for (int j : {0, 1, 12}) {
+  int loaded = 0;
+  for (int j = 0; j < z; ++j) {
     SCOPED_TRACE(j);
-    EXPECT_NEAR(q_[j], hj.rollers[j].outer_load_n, 0.1 * hj.rollers[j].outer_load_n);
+    const double ref = hj.rollers[j].outer_load_n;
+    if (ref > 0.0) {
+      ++loaded;
+      EXPECT_NEAR(q[j] / n, ref, 0.1 * ref);
+    } else {
+      EXPECT_LT(q[j] / n, 0.01 * hj.q_max_n);
+    }
   }
+  EXPECT_EQ(loaded, 5);  // 0, +-27.7, +-55.4 deg (load zone +-71.1 deg)
+  EXPECT_LT(model.solver().energies().BalanceError(), 1e-3);
 }
 
 }  // namespace

@@ -193,9 +193,9 @@ TEST(Scene, SpallLengthDefaultsToThroughLengthAndPartialNeedsTheHybridModel) {
 }
 
 TEST(Scene, RaceContactIsFacetedOrCurved) {
-  EXPECT_EQ(ParseScene("", "default.toml").model.race_contact, "faceted");
-  EXPECT_EQ(ParseScene("[model]\nrace_contact = \"curved\"\n", "c.toml").model.race_contact,
-            "curved");
+  EXPECT_EQ(ParseScene("", "default.toml").model.race_contact, "curved");
+  EXPECT_EQ(ParseScene("[model]\nrace_contact = \"faceted\"\n", "f.toml").model.race_contact,
+            "faceted");
   ExpectOneLineError(ErrorOf("[model]\nrace_contact = \"round\"\n"),
                      "model.race_contact: expected \"faceted\" or \"curved\", got \"round\"");
 }
