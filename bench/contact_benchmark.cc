@@ -1,6 +1,7 @@
 // Contact cost: ns per slave-node-cycle of ContactPair::AddForces for a roller-like disc rim
 // (slave) resting in a bore (master), with friction, and for far-apart pairs (bounding-box
-// rejection only). Run: build-<you>/bench/contact_benchmark
+// rejection only); the same rim in the bore with both surfaces marked as circular arcs (curved
+// contact: arc search, blend, Jet gradient). Run: build-<you>/bench/contact_benchmark
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -18,7 +19,7 @@ struct Setup {
   contact::ContactSurface slave, master;
 };
 
-Setup MakeSetup(int n, int m, double offset_y) {
+Setup MakeSetup(int n, int m, double offset_y, bool curved) {
   const double r = 5e-3, R = 30e-3, pi = 3.14159265358979;
   Setup s;
   s.state.Resize(n + m);
@@ -41,12 +42,17 @@ Setup MakeSetup(int n, int m, double offset_y) {
   s.state.mass.assign(n + m, 1e-4);
   s.slave = contact::MakeSurfaceFromChain("roller", sn, true);
   s.master = contact::MakeSurfaceFromChain("race", mn, true);
+  if (curved) {
+    const double cy = -(R - r) - 1e-6 + offset_y;
+    contact::MarkCircularArcs(&s.slave, s.state.x.data(), s.state.y.data(), 0.0, cy, r, 1e-12);
+    contact::MarkCircularArcs(&s.master, s.state.x.data(), s.state.y.data(), 0.0, 0.0, R, 1e-12);
+  }
   return s;
 }
 
-void Run(benchmark::State& bs, double offset_y) {
+void Run(benchmark::State& bs, double offset_y, bool curved = false) {
   const int n = static_cast<int>(bs.range(0));
-  Setup s = MakeSetup(n, 6 * n, offset_y);
+  Setup s = MakeSetup(n, 6 * n, offset_y, curved);
   contact::ContactPairOptions o;
   o.penalty_law = contact::PenaltyLaw::kConstant;
   o.constant_stiffness = 1e9;
@@ -64,9 +70,11 @@ void Run(benchmark::State& bs, double offset_y) {
 
 void BM_ContactRollerInBore(benchmark::State& bs) { Run(bs, 0.0); }
 void BM_ContactFarApart(benchmark::State& bs) { Run(bs, 0.1); }
+void BM_ContactCurvedRollerInBore(benchmark::State& bs) { Run(bs, 0.0, true); }
 
 BENCHMARK(BM_ContactRollerInBore)->Arg(128)->Arg(512)->Arg(2048);
 BENCHMARK(BM_ContactFarApart)->Arg(128)->Arg(512)->Arg(2048);
+BENCHMARK(BM_ContactCurvedRollerInBore)->Arg(128)->Arg(512)->Arg(2048);
 
 }  // namespace
 

@@ -15,6 +15,14 @@ namespace spallkit::contact {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// A closest point this close to a span's end (chord parameter) still counts as in span: where the
+// contact direction passes exactly through a node (a rim node on the load line at t = 0), rounding
+// would otherwise put it outside both arcs and drop the contact to the nodes, whose stiffness per
+// node differs from the arc's (bench/contact_benchmark's 512-node rim: 2.4x the force).
+constexpr double kSpanTolerance = 1e-9;
+// Below this total blend weight (points within ~1e-6 of a span end, the weight ~ xi^2) the
+// weights' gradient would divide rounding noise by ~0; the deepest point then acts alone.
+constexpr double kMinBlendWeight = 1e-24;
 
 double InverseMass(double m) { return m > 0.0 ? 1.0 / m : 0.0; }
 
@@ -436,9 +444,9 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
       }
       ArcPair<double> g;
       if (!ArcClosestPoints(arc, mp, master_arc ? &pass.master_arcs[m] : nullptr, &g)) continue;
-      if (!(g.xi_master >= 0.0 && g.xi_master <= 1.0)) continue;
+      if (!(g.xi_master >= -kSpanTolerance && g.xi_master <= 1.0 + kSpanTolerance)) continue;
       g.xi = ChordParameter(x[sa], y[sa], x[sb], y[sb], g.px, g.py);
-      if (!(g.xi >= 0.0 && g.xi <= 1.0)) continue;
+      if (!(g.xi >= -kSpanTolerance && g.xi <= 1.0 + kSpanTolerance)) continue;
       ArcContact c;
       c.at = g;
       c.slave_segment = k;
@@ -512,7 +520,7 @@ void ContactPair::BlendArcContacts(Pass& pass, const double* x, const double* y)
     c.weight = BlendWeight(c.at.xi, c.at.xi_master);
     total += c.weight;
   }
-  if (!(total > 0.0)) {  // every point exactly at a span end: the deepest alone, weight fixed
+  if (!(total > kMinBlendWeight)) {  // all at span ends (a node): the deepest alone, weight fixed
     size_t deepest = 0;
     for (size_t i = 1; i < pass.arc_blend.size(); ++i)
       if (pass.arc_blend[i].at.gap < pass.arc_blend[deepest].at.gap) deepest = i;
