@@ -18,6 +18,16 @@ std::string Scene0() {
   return std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml";
 }
 
+// The coarse healthy section most tests here run (1 mm, 0.9 mm along contacts), with mu 0.1 / 0.08
+// where `rolling` (the paper's friction slides the rollers on this mesh), plus `extra` overrides.
+std::vector<std::string> CoarseHealthy(bool rolling, std::vector<std::string> extra) {
+  std::vector<std::string> sets = {
+      "mesh.size_mm=1.0", "mesh.contact_size_mm=0.9", "mesh.adapter_size_mm=2.0", "defects=[]"};
+  if (rolling) sets.insert(sets.end(), {"friction.mu_static=0.1", "friction.mu_dynamic=0.08"});
+  sets.insert(sets.end(), extra.begin(), extra.end());
+  return sets;
+}
+
 // Full-FE rollers lock on their rim facets when mu x facets is small (measured bracket in
 // docs/BEARING_MODEL.md): the paper's friction on the 0.5 mm mesh (40 facets) is warned about,
 // with the contact size that would do (2 pi r mu / 0.8 = 0.255 mm); mu 0.1 there, the paper's
@@ -43,9 +53,7 @@ TEST(BearingModelTest, WarnsWhenFeRollersWouldStandOnTheirFacets) {
 }
 
 TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
-  const Scene scene = LoadScene(
-      Scene0(),
-      {"mesh.size_mm=1.0", "mesh.contact_size_mm=0.9", "mesh.adapter_size_mm=2.0", "defects=[]"});
+  const Scene scene = LoadScene(Scene0(), CoarseHealthy(false, {}));
   BearingModel model(scene);
   EXPECT_EQ(model.num_rollers(), 13);
   // Default sensors: top (0, 26 mm) along y and side (26 mm, 0) along x, on outer-ring nodes.
@@ -66,15 +74,8 @@ TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
 // 28.7 %; docs/BEARING_MODEL.md, "Speed range of the full-FE section"). ~12 s.
 TEST(BearingModelTest, FullFeCageStaysCentredAtSpeed) {
   const std::string scene = std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/width-1.38.toml";
-  BearingModel model(LoadScene(scene,
-                               {"model.fidelity=fe",
-                                "mesh.size_mm=1.0",
-                                "mesh.contact_size_mm=0.9",
-                                "mesh.adapter_size_mm=2.0",
-                                "defects=[]",
-                                "friction.mu_static=0.1",
-                                "friction.mu_dynamic=0.08",
-                                "solver.threads=1"}));
+  BearingModel model(
+      LoadScene(scene, CoarseHealthy(true, {"model.fidelity=fe", "solver.threads=1"})));
   double worst = 0.0, omega_sum = 0.0;
   int omega_samples = 0;
   for (int k = 1; k <= 80; ++k) {  // every 0.1 ms up to 8 ms
@@ -100,16 +101,11 @@ TEST(BearingModelTest, FullFeCageStaysCentredAtSpeed) {
 TEST(BearingModelTest, CurvedRaceContactRemovesTheFacetNoise) {
   auto rms = [](const std::string& race_contact) {
     const Scene scene = LoadScene(Scene0(),
-                                  {"model.race_contact=" + race_contact,
-                                   "mesh.size_mm=1.0",
-                                   "mesh.contact_size_mm=0.9",
-                                   "mesh.adapter_size_mm=2.0",
-                                   "defects=[]",
-                                   "friction.mu_static=0.1",
-                                   "friction.mu_dynamic=0.08",
-                                   "operation.ramp_s=0.002",
-                                   "run.duration_s=0.006",
-                                   "solver.threads=1"});
+                                  CoarseHealthy(true,
+                                                {"model.race_contact=" + race_contact,
+                                                 "operation.ramp_s=0.002",
+                                                 "run.duration_s=0.006",
+                                                 "solver.threads=1"}));
     SimulationOptions o;
     Simulation sim(scene, o);
     const SimulationSummary summary = sim.Run();
@@ -131,13 +127,8 @@ TEST(BearingModelTest, CurvedRaceContactRemovesTheFacetNoise) {
 class StaticLoadTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const Scene scene = LoadScene(Scene0(),
-                                  {"mesh.size_mm=1.0",
-                                   "mesh.contact_size_mm=0.9",
-                                   "mesh.adapter_size_mm=2.0",
-                                   "defects=[]",
-                                   "operation.speed_rpm=0",
-                                   "operation.ramp_s=0.001"});
+    const Scene scene = LoadScene(
+        Scene0(), CoarseHealthy(false, {"operation.speed_rpm=0", "operation.ramp_s=0.001"}));
     model_ = new BearingModel(scene);
     // Average the last millisecond of 3 ms (load ramped over the first).
     const int z = model_->num_rollers();
