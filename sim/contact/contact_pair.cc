@@ -154,6 +154,12 @@ ContactPair::ContactPair(std::string name,
       p.arc_candidates.reserve(4 * m);  // no allocation in the time loop
       p.arc_blend.reserve(4 * m);
       p.node_owned.assign(n, 0);
+      p.rim_node.assign(n, 0);
+      for (int i = 0; i < n; ++i) {
+        const int before = p.slave.segment_before[i], after = p.slave.segment_after[i];
+        p.rim_node[i] = before >= 0 && after >= 0 && p.slave.segment_curvature[before] > 0.0 &&
+                        p.slave.segment_curvature[after] > 0.0;
+      }
       if (p.master.curved()) {
         p.master_arcs.assign(p.master.num_segments(), Arc<double>{});
         p.master_arc_stamp.assign(p.master.num_segments(), -1);
@@ -346,10 +352,7 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
       // Normal force -f_n grad p (conservative, BlendArcContacts); friction at the arc points
       // (it turns the roller), by the blend's weights.
       for (const ArcContact& c : pass.arc_blend) {
-        const int nodes[4] = {slave.nodes[slave.segment_a[c.slave_segment]],
-                              slave.nodes[slave.segment_b[c.slave_segment]],
-                              master.nodes[master.segment_a[c.master_segment]],
-                              master.nodes[master.segment_b[c.master_segment]]};
+        const std::array<int, 4> nodes = ArcNodes(pass, c);
         for (int j = 0; j < 4; ++j) {
           fx[nodes[j]] -= slot.fn * c.grad[2 * j];
           fy[nodes[j]] -= slot.fn * c.grad[2 * j + 1];
@@ -362,6 +365,15 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
       AddToResultant(slot, sign);
     }
   }
+}
+
+std::array<int, 4> ContactPair::ArcNodes(const Pass& pass, const ArcContact& c) {
+  const ContactSurface& s = pass.slave;
+  const ContactSurface& m = pass.master;
+  return {s.nodes[s.segment_a[c.slave_segment]],
+          s.nodes[s.segment_b[c.slave_segment]],
+          m.nodes[m.segment_a[c.master_segment]],
+          m.nodes[m.segment_b[c.master_segment]]};
 }
 
 void ContactPair::AddToResultant(const Slot& slot, double sign) {
@@ -489,12 +501,7 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
     pass.node_owned[slave.segment_a[b.slave_segment]] = 1;
     pass.node_owned[slave.segment_b[b.slave_segment]] = 1;
   }
-  for (int i = 0; i < slave.num_nodes(); ++i) {
-    const int before = slave.segment_before[i], after = slave.segment_after[i];
-    if (before >= 0 && after >= 0 && slave.segment_curvature[before] > 0.0 &&
-        slave.segment_curvature[after] > 0.0)
-      pass.node_owned[i] = 1;
-  }
+  for (int i = 0; i < slave.num_nodes(); ++i) pass.node_owned[i] |= pass.rim_node[i];
 }
 
 namespace {
@@ -535,10 +542,7 @@ void ContactPair::BlendArcContacts(Pass& pass, const double* x, const double* y)
   }
   const bool fixed_weight = pass.arc_blend.size() == 1;
   for (ArcContact& c : pass.arc_blend) {
-    const int nodes[4] = {slave.nodes[slave.segment_a[c.slave_segment]],
-                          slave.nodes[slave.segment_b[c.slave_segment]],
-                          master.nodes[master.segment_a[c.master_segment]],
-                          master.nodes[master.segment_b[c.master_segment]]};
+    const std::array<int, 4> nodes = ArcNodes(pass, c);
     Jet s[4], m[4];
     for (int j = 0; j < 2; ++j) {
       s[2 * j] = Jet(x[nodes[j]], 2 * j);
@@ -559,7 +563,6 @@ void ContactPair::BlendArcContacts(Pass& pass, const double* x, const double* y)
 
 void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) {
   const ContactSurface& slave = pass.slave;
-  const ContactSurface& master = pass.master;
   const double* x = state.x.data();
   const double* y = state.y.data();
   const double* vx = state.vx.data();
@@ -582,10 +585,7 @@ void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) 
     // spread: the normal one is -dp/dt, the tangential one the arc points' slip.
     double k = 0.0, inverse_mass = 0.0, nx = 0.0, ny = 0.0, vn = 0.0;
     for (const ArcContact& c : pass.arc_blend) {
-      const int nodes[4] = {slave.nodes[slave.segment_a[c.slave_segment]],
-                            slave.nodes[slave.segment_b[c.slave_segment]],
-                            master.nodes[master.segment_a[c.master_segment]],
-                            master.nodes[master.segment_b[c.master_segment]]};
+      const std::array<int, 4> nodes = ArcNodes(pass, c);
       const double ws = c.at.xi, wm = c.at.xi_master;
       k += c.weight * SegmentStiffness(pass,
                                        c.master_segment,
@@ -604,13 +604,11 @@ void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) 
     nx /= nl, ny /= nl;
     double vt = 0.0;
     for (const ArcContact& c : pass.arc_blend) {
-      const int sa = slave.nodes[slave.segment_a[c.slave_segment]];
-      const int sb = slave.nodes[slave.segment_b[c.slave_segment]];
-      const int a = master.nodes[master.segment_a[c.master_segment]];
-      const int b = master.nodes[master.segment_b[c.master_segment]];
+      const std::array<int, 4> nodes = ArcNodes(pass, c);
       double tsx, tsy, tmx, tmy;
-      ArcPointVelocity(x, y, vx, vy, sa, sb, c.at.xi, c.at.px, c.at.py, &tsx, &tsy);
-      ArcPointVelocity(x, y, vx, vy, a, b, c.at.xi_master, c.at.qx, c.at.qy, &tmx, &tmy);
+      ArcPointVelocity(x, y, vx, vy, nodes[0], nodes[1], c.at.xi, c.at.px, c.at.py, &tsx, &tsy);
+      ArcPointVelocity(
+          x, y, vx, vy, nodes[2], nodes[3], c.at.xi_master, c.at.qx, c.at.qy, &tmx, &tmy);
       vt += c.weight * (-(tsx - tmx) * ny + (tsy - tmy) * nx);  // along t = (-ny, nx)
     }
     ContactLaw(k,

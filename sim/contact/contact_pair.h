@@ -149,6 +149,7 @@ class ContactPair : public solver::ForceContributor {
     Slot arc_slot;
     double arc_spring = 0.0, arc_spring_stiffness = 0.0;
     std::vector<char> node_owned;          // per slave node: the arc contact stands for it
+    std::vector<char> rim_node;            // per slave node: between two convex arcs (fixed)
     std::vector<Arc<double>> master_arcs;  // curved master: its arcs, computed once per step
     std::vector<long> master_arc_stamp;    // the step (arc_stamp) each was computed at
     long arc_stamp = 0;
@@ -163,6 +164,8 @@ class ContactPair : public solver::ForceContributor {
 
   void RunPass(Pass& pass, fe::NodalState& state, double dt, double sign);
   void AddToResultant(const Slot& slot, double sign);  // sign -1: second pass (swapped roles)
+  // Global node ids of an arc contact's segments: slave a, slave b, master a, master b.
+  static std::array<int, 4> ArcNodes(const Pass& pass, const ArcContact& c);
   // The contact law at one contact point (a slave node or arc point): normal penalty with damping,
   // tangential spring `spring` (updated) capped by Coulomb; fills the slot's forces and energies.
   void ContactLaw(double k,
