@@ -583,7 +583,7 @@ void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) 
     }
     // Blended stiffness, mass and normal; relative velocities conjugate to how the forces are
     // spread: the normal one is -dp/dt, the tangential one the arc points' slip.
-    double k = 0.0, inverse_mass = 0.0, nx = 0.0, ny = 0.0, vn = 0.0;
+    double k = 0.0, inverse_mass = 0.0, nx = 0.0, ny = 0.0, vn = 0.0, sx = 0.0, sy = 0.0;
     for (const ArcContact& c : pass.arc_blend) {
       const std::array<int, 4> nodes = ArcNodes(pass, c);
       const double ws = c.at.xi, wm = c.at.xi_master;
@@ -599,18 +599,17 @@ void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) 
       ny += c.weight * c.at.ny;
       for (int j = 0; j < 4; ++j)
         vn -= c.grad[2 * j] * vx[nodes[j]] + c.grad[2 * j + 1] * vy[nodes[j]];
-    }
-    const double nl = std::hypot(nx, ny);
-    nx /= nl, ny /= nl;
-    double vt = 0.0;
-    for (const ArcContact& c : pass.arc_blend) {
-      const std::array<int, 4> nodes = ArcNodes(pass, c);
+      // Slip of the arc points (the work-conjugate of SpreadAtArcPoint), blended.
       double tsx, tsy, tmx, tmy;
       ArcPointVelocity(x, y, vx, vy, nodes[0], nodes[1], c.at.xi, c.at.px, c.at.py, &tsx, &tsy);
       ArcPointVelocity(
           x, y, vx, vy, nodes[2], nodes[3], c.at.xi_master, c.at.qx, c.at.qy, &tmx, &tmy);
-      vt += c.weight * (-(tsx - tmx) * ny + (tsy - tmy) * nx);  // along t = (-ny, nx)
+      sx += c.weight * (tsx - tmx);
+      sy += c.weight * (tsy - tmy);
     }
+    const double nl = std::hypot(nx, ny);
+    nx /= nl, ny /= nl;
+    const double vt = -sx * ny + sy * nx;  // along t = (-ny, nx)
     ContactLaw(k,
                penetration,
                nx,
