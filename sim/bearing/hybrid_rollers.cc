@@ -143,8 +143,7 @@ HybridRollers::HybridRollers(const Scene& scene,
                              const BearingMesh& housing,
                              const fe::NodalState& state,
                              const HybridOptions& options,
-                             const CageGuideOptions& cage_guide,
-                             double load_ramp_s)
+                             const CageGuideOptions& cage_guide)
     : scene_(scene), options_(options), cage_guide_(cage_guide) {
   std::string err;
   if (!options_.IsValid(&err)) throw InputError(err);
@@ -157,9 +156,7 @@ HybridRollers::HybridRollers(const Scene& scene,
   angle_ = solver::RampedRotation(omega, ramp);
   speed_ = solver::RampedSpeed(omega, ramp);
   const double load = scene_.operation.radial_load_n;
-  load_ = [load, load_ramp_s](double tt) {
-    return load_ramp_s > 0 && tt < load_ramp_s ? -load * tt / load_ramp_s : -load;
-  };
+  load_ = solver::LinearRamp(-load, scene_.operation.load_ramp_s);
   outer_radius_ = housing.outer_raceway_radius_m;
   inner_radius_ = housing.inner_raceway_radius_m;
   pocket_half_width_ = 0.5 * (g.bearing.element_diameter_m + g.pocket_clearance_m);

@@ -113,8 +113,7 @@ class HybridRollers : public solver::ForceContributor {
                 const BearingMesh& housing,
                 const fe::NodalState& state,
                 const HybridOptions& options,
-                const CageGuideOptions& cage_guide,
-                double load_ramp_s);
+                const CageGuideOptions& cage_guide);
 
   void AddForces(fe::NodalState& state, double t, double dt) override;
   double StableTimeStep(const fe::NodalState& state) const override;

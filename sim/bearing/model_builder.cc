@@ -54,7 +54,6 @@ bool BearingModelOptions::IsValid(std::string* error) const {
   if (!(cage_penalty_scale > 0)) return fail("bearing model: cage_penalty_scale must be > 0");
   if (!(contact_damping_ratio >= 0 && contact_damping_ratio <= 1))
     return fail("bearing model: contact_damping_ratio must be in [0, 1]");
-  if (!(load_ramp_fraction >= 0)) return fail("bearing model: load_ramp_fraction must be >= 0");
   return cage_guide.IsValid(error);
 }
 
@@ -107,12 +106,8 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
   if (hybrid) {
     // Rollers, cage and inner ring: rigid bodies in one contributor (before the tie, which
     // must see the contact forces on the ring nodes).
-    hybrid_ = std::make_unique<HybridRollers>(scene_,
-                                              mesh_,
-                                              solver_->state(),
-                                              options_.hybrid,
-                                              options_.cage_guide,
-                                              options_.load_ramp_fraction * ramp);
+    hybrid_ = std::make_unique<HybridRollers>(
+        scene_, mesh_, solver_->state(), options_.hybrid, options_.cage_guide);
     solver_->AddContributor(hybrid_.get());
   } else {
     auto bore = mesh.curves.find("inner_ring.bore");
@@ -122,10 +117,7 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
     shaft.nodes = bore->second.nodes;
     shaft.angle = solver::RampedRotation(omega, ramp);
     const double load = scene_.operation.radial_load_n;
-    const double load_ramp = options_.load_ramp_fraction * ramp;
-    shaft.force_y = [load, load_ramp](double tt) {
-      return load_ramp > 0 && tt < load_ramp ? -load * tt / load_ramp : -load;
-    };
+    shaft.force_y = solver::LinearRamp(-load, scene_.operation.load_ramp_s);
     shaft_body_ = solver_->AddRigidBody(std::move(shaft));
   }
 

@@ -53,8 +53,6 @@ struct BearingModelOptions {
   double cage_penalty_scale = 0.1;
   // Normal contact damping, fraction of critical of each contact spring.
   double contact_damping_ratio = 0.1;
-  // Load ramp time as a fraction of the scene's ramp_s (1: load and speed ramp together).
-  double load_ramp_fraction = 1.0;
   // Hybrid model (scene model.fidelity = "hybrid") contact options.
   HybridOptions hybrid;
   // Roller-guided cage's radial play, both models (constraints.h).

@@ -455,6 +455,7 @@ Scene ParseScene(const std::string& toml_text,
     scene.operation.inner_ring_speed_rad_s =
         s.Number("speed_rpm", 1200.0, {0.0, 1e5}) * 2.0 * kPi / 60.0;
     scene.operation.ramp_s = s.Number("ramp_s", 0.005, kNonNegative);
+    scene.operation.load_ramp_s = s.Number("load_ramp_s", scene.operation.ramp_s, kNonNegative);
     s.RejectUnknown();
   }
   {

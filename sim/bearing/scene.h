@@ -75,6 +75,7 @@ struct SceneOperation {
   double radial_load_n = 10000.0;       // on the inner ring, towards -y (roller 0)
   double inner_ring_speed_rad_s = 0.0;  // from speed_rpm
   double ramp_s = 0.005;                // linear speed ramp from rest
+  double load_ramp_s = 0.005;  // radial load's linear ramp from 0 at t = 0 (default ramp_s)
 };
 
 struct SceneFriction {

@@ -63,6 +63,12 @@ TimeFunction RampedSpeed(double omega, double ramp_time) {
   };
 }
 
+TimeFunction LinearRamp(double value, double ramp_time) {
+  return [value, ramp_time](double t) {
+    return ramp_time > 0.0 && t < ramp_time ? value * std::max(t, 0.0) / ramp_time : value;
+  };
+}
+
 bool SolverOptions::IsValid(std::string* error) const {
   auto fail = [&](const char* m) {
     if (error) *error = m;

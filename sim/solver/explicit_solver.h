@@ -41,6 +41,9 @@ using TimeFunction = std::function<double(double t)>;
 TimeFunction RampedRotation(double omega, double ramp_time);
 // Speed (rad/s) of the same history.
 TimeFunction RampedSpeed(double omega, double ramp_time);
+// A value rising linearly from 0 at t = 0 to `value` at `ramp_time`, then constant (a ramp time
+// of 0 is a step at t = 0). E.g. a radial load applied without the 2x overshoot of a step.
+TimeFunction LinearRamp(double value, double ramp_time);
 
 // A node set moving rigidly with a reference point: x_i = X(t) + R(theta(t)) (x0_i - X0).
 // Rotation is prescribed; each translation direction is either prescribed (x_motion / y_motion

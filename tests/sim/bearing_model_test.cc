@@ -128,7 +128,7 @@ class StaticLoadTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     const Scene scene = LoadScene(
-        Scene0(), CoarseHealthy(false, {"operation.speed_rpm=0", "operation.ramp_s=0.001"}));
+        Scene0(), CoarseHealthy(false, {"operation.speed_rpm=0", "operation.load_ramp_s=0.001"}));
     model_ = new BearingModel(scene);
     // Average the last millisecond of 3 ms (load ramped over the first).
     const int z = model_->num_rollers();
@@ -181,7 +181,7 @@ TEST(HarrisJonesTest, FullFeLoadZoneWithinTenPercentOnARigidHousing) {
                                  "defects=[]",
                                  "model.adapter=rigid",
                                  "operation.speed_rpm=0",
-                                 "operation.ramp_s=0.001",
+                                 "operation.load_ramp_s=0.001",
                                  "solver.threads=2"});
   BearingModel model(scene);
   const int z = model.num_rollers();

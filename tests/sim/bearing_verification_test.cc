@@ -107,8 +107,10 @@ TEST(RollerProfileTest, RoundedSpallEdgesAreExact) {
 
 // Static (0 rpm) load distribution, averaged over the last millisecond.
 std::vector<double> StaticOuterForces(const std::vector<std::string>& extra, double* shaft_y) {
-  std::vector<std::string> sets = {
-      "model.fidelity=hybrid", "operation.speed_rpm=0", "operation.ramp_s=0.003", "defects=[]"};
+  std::vector<std::string> sets = {"model.fidelity=hybrid",
+                                   "operation.speed_rpm=0",
+                                   "operation.load_ramp_s=0.003",
+                                   "defects=[]"};
   sets.insert(sets.end(), extra.begin(), extra.end());
   BearingModel model(LoadScene(SceneFile(), sets));
   solver::ExplicitSolver& s = model.solver();

@@ -192,6 +192,19 @@ TEST(Scene, SpallLengthDefaultsToThroughLengthAndPartialNeedsTheHybridModel) {
       "defects.0.length_mm: must be > 0");
 }
 
+// The radial load ramps with the speed unless its own ramp is set (0: a step at t = 0).
+TEST(Scene, LoadRampDefaultsToTheSpeedRamp) {
+  EXPECT_DOUBLE_EQ(ParseScene("", "default.toml").operation.load_ramp_s, 0.005);
+  EXPECT_DOUBLE_EQ(ParseScene("[operation]\nramp_s = 0.002\n", "a.toml").operation.load_ramp_s,
+                   0.002);
+  const Scene s = ParseScene("[operation]\nload_ramp_s = 0.001\n", "b.toml");
+  EXPECT_DOUBLE_EQ(s.operation.load_ramp_s, 0.001);
+  EXPECT_DOUBLE_EQ(s.operation.ramp_s, 0.005);
+  EXPECT_NE(s.effective_toml.find("load_ramp_s = 0.001"), std::string::npos) << s.effective_toml;
+  ExpectOneLineError(ErrorOf("[operation]\nload_ramp_s = -1.0\n"),
+                     "bad.toml:2: operation.load_ramp_s: must be >= 0 (got -1)");
+}
+
 TEST(Scene, RaceContactIsFacetedOrCurved) {
   EXPECT_EQ(ParseScene("", "default.toml").model.race_contact, "curved");
   EXPECT_EQ(ParseScene("[model]\nrace_contact = \"faceted\"\n", "f.toml").model.race_contact,

@@ -346,5 +346,15 @@ TEST(ExplicitSolver, RampedRotationHistory) {
   EXPECT_NEAR((th(4e-3 + 1e-9) - th(4e-3 - 1e-9)) / 2e-9, w(4e-3), 1e-4);
 }
 
+TEST(ExplicitSolver, LinearRampRisesFromZeroThenHolds) {
+  const auto load = LinearRamp(-1e4, 1e-3);
+  EXPECT_DOUBLE_EQ(load(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(load(0.25e-3), -2.5e3);
+  EXPECT_DOUBLE_EQ(load(1e-3), -1e4);
+  EXPECT_DOUBLE_EQ(load(5e-3), -1e4);
+  const auto step = LinearRamp(-1e4, 0.0);  // no ramp: a step at t = 0
+  EXPECT_DOUBLE_EQ(step(0.0), -1e4);
+}
+
 }  // namespace
 }  // namespace spallkit::solver
