@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <numeric>
 
@@ -189,6 +190,34 @@ TEST_F(StaticLoadTest, OuterRaceContactsCarryTheRadialLoad) {
   for (int j = 4; j <= 9; ++j) EXPECT_LT(q_[j], 0.01 * total) << "roller " << j;
   // The roller on the load line carries the most.
   for (int j = 1; j < 13; ++j) EXPECT_GT(q_[0], q_[j]);
+}
+
+// The same static section on the scene's elastic steel adapter against Harris-Jones (rigid rings,
+// rigid housing). Per roller the +-55.4 deg rollers carry about a quarter less (the ring bends away
+// beyond the adapter's +-50.3 deg seat; docs/BEARING_MODEL.md), so the comparison here is the load
+// distribution's: every roller within 10 % of the peak load Q_max, as the paper's figure compares
+// them, and the two most loaded within 10 % each. The per-roller criterion on a rigid housing is
+// HarrisJonesTest.FullFeLoadZoneWithinTenPercentOnARigidHousing below.
+TEST_F(StaticLoadTest, LoadDistributionOnTheSteelAdapterWithinTenPercentOfQmax) {
+  const Scene& scene = model_->scene();
+  LoadDistributionOptions o;
+  o.radial_load_n = scene.operation.radial_load_n;
+  o.roller_length_m = scene.geometry.thickness_m;
+  o.diametral_clearance_m = scene.geometry.diametral_clearance_m;
+  LoadDistributionSummary hj;
+  SolveLoadDistribution(o, scene.geometry.bearing, &hj);
+  for (int j = 0; j < model_->num_rollers(); ++j) {
+    const double ref = hj.rollers[j].outer_load_n;
+    std::printf("roller %2d: FE %7.1f N, Harris-Jones %7.1f N (%+.1f %% of Q_max)\n",
+                j,
+                q_[j],
+                ref,
+                100.0 * (q_[j] - ref) / hj.q_max_n);
+    EXPECT_NEAR(q_[j], ref, 0.1 * hj.q_max_n) << "roller " << j;
+    if (ref > 0.75 * hj.q_max_n) {
+      EXPECT_NEAR(q_[j], ref, 0.1 * ref) << "roller " << j;
+    }
+  }
 }
 
 // Issue #4's criterion: load-zone forces within 10 % of Harris-Jones, on the housing Harris-Jones
