@@ -145,6 +145,17 @@ TEST(BearingModelTest, CurvedRaceContactRemovesTheFacetNoise) {
   EXPECT_LT(curved, 0.25 * faceted) << "curved " << curved << ", faceted " << faceted << " m/s^2";
 }
 
+// Harris-Jones for the scene's section (its load, roller length = thickness, clearance; static).
+LoadDistributionSummary HarrisJonesFor(const Scene& scene) {
+  LoadDistributionOptions o;
+  o.radial_load_n = scene.operation.radial_load_n;
+  o.roller_length_m = scene.geometry.thickness_m;
+  o.diametral_clearance_m = scene.geometry.diametral_clearance_m;
+  LoadDistributionSummary hj;
+  SolveLoadDistribution(o, scene.geometry.bearing, &hj);
+  return hj;
+}
+
 // Static load (speed 0): the outer-race contact forces carry the 10 kN, only rollers in the
 // lower half are loaded; the roller on the load line is compared with Harris-Jones.
 class StaticLoadTest : public ::testing::Test {
@@ -199,13 +210,7 @@ TEST_F(StaticLoadTest, OuterRaceContactsCarryTheRadialLoad) {
 // them, and the two most loaded within 10 % each. The per-roller criterion on a rigid housing is
 // HarrisJonesTest.FullFeLoadZoneWithinTenPercentOnARigidHousing below.
 TEST_F(StaticLoadTest, LoadDistributionOnTheSteelAdapterWithinTenPercentOfQmax) {
-  const Scene& scene = model_->scene();
-  LoadDistributionOptions o;
-  o.radial_load_n = scene.operation.radial_load_n;
-  o.roller_length_m = scene.geometry.thickness_m;
-  o.diametral_clearance_m = scene.geometry.diametral_clearance_m;
-  LoadDistributionSummary hj;
-  SolveLoadDistribution(o, scene.geometry.bearing, &hj);
+  const LoadDistributionSummary hj = HarrisJonesFor(model_->scene());
   for (int j = 0; j < model_->num_rollers(); ++j) {
     const double ref = hj.rollers[j].outer_load_n;
     std::printf("roller %2d: FE %7.1f N, Harris-Jones %7.1f N (%+.1f %% of Q_max)\n",
@@ -245,12 +250,7 @@ TEST(HarrisJonesTest, FullFeLoadZoneWithinTenPercentOnARigidHousing) {
       ++n;
     }
   }
-  LoadDistributionOptions o;
-  o.radial_load_n = scene.operation.radial_load_n;
-  o.roller_length_m = scene.geometry.thickness_m;
-  o.diametral_clearance_m = scene.geometry.diametral_clearance_m;
-  LoadDistributionSummary hj;
-  SolveLoadDistribution(o, scene.geometry.bearing, &hj);
+  const LoadDistributionSummary hj = HarrisJonesFor(scene);
   int loaded = 0;
   for (int j = 0; j < z; ++j) {
     SCOPED_TRACE(j);
