@@ -281,6 +281,18 @@ TEST(HybridVerificationTest, EnergyIsBalancedWithASpallAtThePapersFriction) {
   EXPECT_LT(worst, 0.01);
 }
 
+// Overrides of the spall-drop tests: 6000 rpm after a 2 ms ramp, the spall on `defective`,
+// mu 0.1 / 0.08, plus the model's own `sets`.
+std::vector<std::string> SpallDropRun(int defective, std::vector<std::string> sets) {
+  sets.insert(sets.end(),
+              {"operation.speed_rpm=6000",
+               "operation.ramp_s=0.002",
+               "defects.0.roller=" + std::to_string(defective),
+               "friction.mu_static=0.1",
+               "friction.mu_dynamic=0.08"});
+  return sets;
+}
+
 TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARace) {
   // 6000 rpm: the spall meets a race every 1.74 ms (half a roller revolution relative to the
   // cage), so the defective roller meets each race about twice while it crosses the load zone.
@@ -296,14 +308,8 @@ TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARa
   // energy (14 mJ at 6000 rpm) is below the ~23 mJ needed to re-load the contacts
   // (docs/BEARING_MODEL.md, "The hybrid model").
   constexpr int kDefective = 10;
-  BearingModel model(LoadScene(SceneFile(),
-                               {"model.fidelity=hybrid",
-                                "mesh.size_mm=2.0",
-                                "operation.speed_rpm=6000",
-                                "operation.ramp_s=0.002",
-                                "defects.0.roller=10",
-                                "friction.mu_static=0.1",
-                                "friction.mu_dynamic=0.08"}));
+  BearingModel model(LoadScene(
+      SceneFile(), SpallDropRun(kDefective, {"model.fidelity=hybrid", "mesh.size_mm=2.0"})));
   const HybridRollers& h = *model.hybrid_rollers();
   const double alpha = h.profile(kDefective).HalfAngle();
   solver::ExplicitSolver& s = model.solver();
@@ -375,15 +381,11 @@ TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARa
 TEST(FullFeVerificationTest, DefectiveRollerForceDropsToZeroEveryHalfTurnInTheLoadZone) {
   constexpr int kDefective = 11;
   BearingModel model(LoadScene(SceneFile(),
-                               {"mesh.size_mm=1.0",
-                                "mesh.contact_size_mm=0.5",
-                                "mesh.adapter_size_mm=2.0",
-                                "operation.speed_rpm=6000",
-                                "operation.ramp_s=0.002",
-                                "defects.0.roller=11",
-                                "friction.mu_static=0.1",
-                                "friction.mu_dynamic=0.08",
-                                "solver.threads=1"}));
+                               SpallDropRun(kDefective,
+                                            {"mesh.size_mm=1.0",
+                                             "mesh.contact_size_mm=0.5",
+                                             "mesh.adapter_size_mm=2.0",
+                                             "solver.threads=1"})));
   solver::ExplicitSolver& s = model.solver();
   s.Run(0.002);
   std::vector<double> drop_times;
