@@ -11,8 +11,8 @@
 //    needs no friction to hold the ring against roller traction.
 //  - Inner ring: its bore nodes form a solver RigidBody (the shaft): rotation prescribed
 //    (speed ramped linearly from 0 to speed_rpm over ramp_s, then constant), translation free in
-//    x and y, the radial load applied towards -y and ramped over the same ramp_s (a step load on
-//    an undamped rigid-body mode would overshoot by 2x and ring for the whole run).
+//    x and y, the radial load applied towards -y and ramped over load_ramp_s (default ramp_s; a
+//    step load on an undamped rigid-body mode would overshoot by 2x and ring for the whole run).
 //  - Rollers: free elastic bodies. Cage: the Z webs as ONE rigid body with free translation and
 //    rotation (RigidPart, sim/bearing/constraints.h), guided only by the rollers.
 //  - Contact (node-to-segment penalty, Coulomb friction from [friction]): for each roller j,
