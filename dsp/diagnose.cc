@@ -94,6 +94,20 @@ double NeededAlpha(const std::vector<FaultFamily>& families, double max_scale) {
   return top * max_scale;
 }
 
+// Narrowest demodulation band worth searching: one that holds every line (with the search range)
+// of at least one race or roller family. A band that holds only the rolling-element comb is where
+// a roller spall's slow load drops show when the race impacts ring nothing (the full-FE record of
+// docs/BEARING_MODEL.md); the wider families' top lines fall outside it and are excluded there
+// ("range"), which only weakens their evidence. The cage comb (5 f_c) is left out of this rule:
+// it would open hundreds of narrow bands.
+double NarrowestBandHz(const std::vector<FaultFamily>& families, double max_scale) {
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const auto& f : families)
+    if (f.component != FaultComponent::kCage)
+      narrowest = std::min(narrowest, f.MaxLineHz() * max_scale);
+  return narrowest;
+}
+
 struct BandResult {
   KurtogramNode node;
   int envelope_size = 0;  // m, the decimated envelope's length (for the reported SES)
@@ -223,23 +237,27 @@ Diagnosis Diagnose(const Record& record,
   }
   EnvelopeAnalyzer analyzer(x, fs);
   const double df = analyzer.resolution_hz();
+  // Candidate widths start at the narrowest band that holds a whole race or roller comb, and at
+  // a floor window's worth of SES bins (a shorter SES has no noise floor to test lines against).
+  const double band_need = std::min(
+      alpha_need,
+      std::max(NarrowestBandHz(d.families, max_scale), (options.floor_window_bins + 2) * df));
 
   // Kurtogram, only as deep as the candidate bands need: the narrowest candidate (width >=
-  // alpha_need) lies on binary level needed_level or on the ternary row below it, and the
+  // band_need) lies on binary level needed_level or on the ternary row below it, and the
   // ternary rows reach needed_level + 0.6 with L = needed_level + 1; deeper rows hold no
   // candidate and would cost ~15 % more. The map (options.kurtogram_map, for the plot) is a
   // second kurtogram two levels deeper; the analysis does not depend on it.
   KurtogramOptions kopt;
   const int auto_level = std::min(9, static_cast<int>(std::floor(std::log2(d.samples))) - 7);
-  const int needed_level =
-      std::max(1, static_cast<int>(std::floor(std::log2(fs / alpha_need))) - 1);
+  const int needed_level = std::max(1, static_cast<int>(std::floor(std::log2(fs / band_need))) - 1);
   kopt.max_level = options.kurtogram_max_level > 0
                        ? options.kurtogram_max_level
                        : std::max(1, std::min(auto_level, needed_level + 1));
   kopt.min_center_hz = alpha_need;
   // The candidate rows' squared envelopes are kept: each candidate's SES is the spectrum of its
   // node's |c|^2 (one forward transform), with no second demodulation of the band.
-  kopt.keep_envelopes_min_hz = alpha_need;
+  kopt.keep_envelopes_min_hz = band_need;
   kopt.keep_envelopes_max_hz = kMaxWidthFactor * alpha_need;
   thread_local std::vector<std::vector<float>> envelope_buffers;  // reused by the next call
   kopt.envelope_buffers = &envelope_buffers;
@@ -289,13 +307,13 @@ Diagnosis Diagnose(const Record& record,
   for (const auto& node : nodes) {
     const Band b = node.band();
     // Nodes much wider than the lines need only dilute a resonance with noise and cost the
-    // most to demodulate: keep widths in [alpha_need, 8 alpha_need].
-    if (b.width_hz() >= alpha_need && b.width_hz() <= kMaxWidthFactor * alpha_need &&
+    // most to demodulate: keep widths in [band_need, 8 alpha_need].
+    if (b.width_hz() >= band_need && b.width_hz() <= kMaxWidthFactor * alpha_need &&
         b.low_hz >= 0.5 * alpha_need)
       candidates.push_back(node);
   }
   if (candidates.empty())
-    throw InputError("diagnose: no demodulation band of width >= " + Fmt("%.0f", alpha_need) +
+    throw InputError("diagnose: no demodulation band of width >= " + Fmt("%.0f", band_need) +
                      " Hz fits below fs/2 = " + Fmt("%.0f", 0.5 * fs) + " Hz");
   // Bonferroni over every candidate band, searched or not: the early stop below only ever
   // searches fewer, so the false-alarm design is the same as searching them all.
