@@ -3,11 +3,13 @@
 //   spall simulate SCENE.toml [-o run.h5] [--csv accel.csv] [--set key=value]... [--resume]
 //                  [--stop-after-ms T] [--quiet] [--energy-ledger]
 //
-// HDF5 layout: docs/BEARING_MODEL.md ("Output file"). Progress goes to stderr only when stderr is
-// a terminal. With [solver] checkpoint_interval_s > 0 a checkpoint RUN.h5.ckpt is written every
-// interval; --resume continues from it with results identical to an uninterrupted run.
+// HDF5 layout: docs/BEARING_MODEL.md ("Output file"). Progress goes to stderr: on a terminal one
+// line rewritten in place, elsewhere (a log file, a batch job) one line per tenth of the run. With
+// [solver] checkpoint_interval_s > 0 a checkpoint RUN.h5.ckpt is written every interval; --resume
+// continues from it with results identical to an uninterrupted run.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -40,20 +42,28 @@ int Run(const Opts& o) {
   if (o.stop_after_ms >= 0) so.stop_after_s = o.stop_after_ms * 1e-3;
   so.model.track_contributor_work = o.energy_ledger;
   const bool tty = ::isatty(STDERR_FILENO) && !o.quiet;
-  if (tty)
-    so.progress = [](const sim::SimulationProgress& p) {
+  if (!o.quiet)
+    so.progress = [tty, next_tenth = 1](const sim::SimulationProgress& p) mutable {
       const double frac = p.time / p.duration;
-      const double eta = frac > 0 ? p.wall_seconds * (1.0 - frac) / frac : 0.0;
+      // Not a terminal: carriage returns would pile up in the log, so print whole lines, one per
+      // tenth of the run (a resumed run starts at the tenth it had reached).
+      if (!tty) {
+        if (frac < next_tenth / 10.0 - 1e-9) return;
+        while (next_tenth <= 10 && frac >= next_tenth / 10.0 - 1e-9) ++next_tenth;
+      }
+      const double eta = frac > 0 ? std::max(0.0, p.wall_seconds * (1.0 - frac) / frac) : 0.0;
       std::fprintf(
           stderr,
-          "\r  t = %8.3f / %.3f ms  %5.1f %%  steps %ld  dt %.1f ns  wall %.0f s  eta %.0f s ",
+          "%s  t = %8.3f / %.3f ms  %5.1f %%  steps %ld  dt %.1f ns  wall %.0f s  eta %.0f s%s",
+          tty ? "\r" : "",
           p.time * 1e3,
           p.duration * 1e3,
           100 * frac,
           p.steps,
           p.time_step * 1e9,
           p.wall_seconds,
-          eta);
+          eta,
+          tty ? " " : "\n");
       std::fflush(stderr);
     };
   sim::Simulation simulation(scene, so);

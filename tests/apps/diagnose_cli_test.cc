@@ -1,8 +1,6 @@
 // Runs the built `spall` binary: `frequencies` and `diagnose` outputs, and bad input -> one line on
 // stderr with exit code 2.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -12,31 +10,13 @@
 #include <string>
 
 #include "dsp/record.h"
+#include "tests/apps/run_spall.h"
 #include "tests/dsp/diagnose_test_signals.h"
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-Result RunSpall(const std::string& args) {
-  // Per process: ctest runs every TEST of this program as its own process, in parallel.
-  const std::string err_path = std::filesystem::temp_directory_path() /
-                               ("spall_cli_err_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmd = std::string(SPALLKIT_SPALL_EXE) + " " + args + " 2>" + err_path;
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_path);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  return r;
-}
+using Result = spallkit::testing::SpallResult;
+using spallkit::testing::RunSpall;
 
 std::string WriteSynthetic(const std::string& name, double seconds, bool fault) {
   spallkit::testing::FaultSignalSpec s;

@@ -1,0 +1,38 @@
+// Runs the built `spall` binary with arguments and captures its exit code, stdout and stderr
+// (stderr through a file, so `spall` sees a non-terminal stderr as in a batch job).
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace spallkit::testing {
+
+struct SpallResult {
+  int code = -1;
+  std::string out, err;
+};
+
+inline SpallResult RunSpall(const std::string& args) {
+  // Per process: ctest runs every TEST of a program as its own process, in parallel.
+  const std::string err_path = std::filesystem::temp_directory_path() /
+                               ("spall_cli_err_" + std::to_string(::getpid()) + ".txt");
+  const std::string cmd = std::string(SPALLKIT_SPALL_EXE) + " " + args + " 2>" + err_path;
+  SpallResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  return r;
+}
+
+}  // namespace spallkit::testing
