@@ -51,7 +51,9 @@ int Run(const Opts& o) {
         if (frac < next_tenth / 10.0 - 1e-9) return;
         while (next_tenth <= 10 && frac >= next_tenth / 10.0 - 1e-9) ++next_tenth;
       }
-      const double eta = frac > 0 ? std::max(0.0, p.wall_seconds * (1.0 - frac) / frac) : 0.0;
+      // A resumed run's wall time counts from its checkpoint: the rate is of this process's part.
+      const double done = (p.time - p.start_time) / p.duration;
+      const double eta = done > 0 ? std::max(0.0, p.wall_seconds * (1.0 - frac) / done) : 0.0;
       std::fprintf(
           stderr,
           "%s  t = %8.3f / %.3f ms  %5.1f %%  steps %ld  dt %.1f ns  wall %.0f s  eta %.0f s%s",

@@ -144,6 +144,7 @@ SimulationSummary Simulation::Run() {
       options_.progress_interval_s > 0 ? options_.progress_interval_s : duration / 200.0;
   sum.min_time_step = std::numeric_limits<double>::infinity();
   const long first_step = solver.step();
+  const double start_time = solver.time();
   double next_ckpt = ci > 0 ? (std::floor(solver.time() / ci + 1e-12) + 1.0) * ci
                             : std::numeric_limits<double>::infinity();
   const auto t0 = std::chrono::steady_clock::now();
@@ -168,6 +169,7 @@ SimulationSummary Simulation::Run() {
       p.time = solver.time(), p.duration = duration, p.steps = solver.step();
       p.time_step = solver.time_step();
       p.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      p.start_time = start_time;
       options_.progress(p);
     }
     if (stop_now) {

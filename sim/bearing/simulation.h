@@ -26,6 +26,7 @@ struct SimulationProgress {
   long steps = 0;                     // total so far
   double time_step = 0.0;             // last, s
   double wall_seconds = 0.0;          // this process
+  double start_time = 0.0;  // simulated time this process started at (a resume's checkpoint)
 };
 
 struct SimulationOptions {

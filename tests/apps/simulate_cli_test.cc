@@ -48,6 +48,19 @@ TEST(SimulateCli, ProgressOnANonTerminalIsOneWholeLinePerTenth) {
   EXPECT_NE(progress.front().find(" 10.0 %"), std::string::npos) << progress.front();
   EXPECT_NE(progress.back().find("100.0 %"), std::string::npos) << progress.back();
   EXPECT_TRUE(fs::exists(dir / "run.h5"));
+  // Stopped at half-time and resumed: the resumed process reports from where it starts.
+  const std::string half =
+      " -o " + (dir / "half.h5").string() + kFast + " --set solver.checkpoint_interval_s=0.005";
+  ASSERT_EQ(RunSpall("simulate " + kScene + half + " --stop-after-ms 5").code, 0);
+  const auto resumed = RunSpall("simulate " + kScene + half + " --resume");
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  std::vector<std::string> rest;
+  for (const auto& l : Lines(resumed.err))
+    if (l.find(" %  steps ") != std::string::npos) rest.push_back(l);
+  ASSERT_GE(rest.size(), 5u) << resumed.err;
+  ASSERT_LE(rest.size(), 6u) << resumed.err;
+  EXPECT_EQ(rest.front().find("  10.0 %"), std::string::npos) << rest.front();
+  EXPECT_NE(rest.back().find("100.0 %"), std::string::npos) << rest.back();
   // --quiet: no progress at all.
   const auto q =
       RunSpall("simulate " + kScene + " -o " + (dir / "q.h5").string() + kFast + " --quiet");
