@@ -3,9 +3,12 @@
 //
 //   record --(optional cepstrum pre-whitening)--> one FFT (EnvelopeAnalyzer)
 //          --> fast kurtogram (all nodes of the 1/3-binary tree)
-//          --> candidate bands: nodes wide enough to hold every fault line searched (bandwidth >=
-//              highest line) and starting above half of it (keeps shaft and mains lines of the raw
-//              signal out of the demodulation band, where they would beat into SES lines)
+//          --> candidate bands: nodes wide enough to hold every line of at least one race or
+//              roller family (and a floor window of SES bins), at most 8x the highest line
+//              searched, and starting above half of that highest line (keeps shaft and mains lines
+//              of the raw signal out of the demodulation band, where they would beat into SES
+//              lines); in a band narrower than the highest line the wider families' top lines are
+//              out of range and excluded
 //          --> per candidate: SES, robust floor, comb detection of the four families
 //          --> chosen band = the candidate with the strongest family evidence (smallest corrected
 //              p-value); the kurtogram's best node when no family shows anything
