@@ -29,6 +29,14 @@ std::vector<std::string> Lines(const std::string& text) {
   return lines;
 }
 
+// The progress lines of a run's stderr.
+std::vector<std::string> ProgressLines(const std::string& err) {
+  std::vector<std::string> progress;
+  for (const auto& l : Lines(err))
+    if (l.find(" %  steps ") != std::string::npos) progress.push_back(l);
+  return progress;
+}
+
 fs::path TempDir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / (name + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -41,9 +49,7 @@ TEST(SimulateCli, ProgressOnANonTerminalIsOneWholeLinePerTenth) {
   const auto r = RunSpall("simulate " + kScene + " -o " + (dir / "run.h5").string() + kFast);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << "carriage returns in a log file";
-  std::vector<std::string> progress;
-  for (const auto& l : Lines(r.err))
-    if (l.find(" %  steps ") != std::string::npos) progress.push_back(l);
+  const std::vector<std::string> progress = ProgressLines(r.err);
   ASSERT_EQ(progress.size(), 10u) << r.err;
   EXPECT_NE(progress.front().find(" 10.0 %"), std::string::npos) << progress.front();
   EXPECT_NE(progress.back().find("100.0 %"), std::string::npos) << progress.back();
@@ -54,9 +60,7 @@ TEST(SimulateCli, ProgressOnANonTerminalIsOneWholeLinePerTenth) {
   ASSERT_EQ(RunSpall("simulate " + kScene + half + " --stop-after-ms 5").code, 0);
   const auto resumed = RunSpall("simulate " + kScene + half + " --resume");
   ASSERT_EQ(resumed.code, 0) << resumed.err;
-  std::vector<std::string> rest;
-  for (const auto& l : Lines(resumed.err))
-    if (l.find(" %  steps ") != std::string::npos) rest.push_back(l);
+  const std::vector<std::string> rest = ProgressLines(resumed.err);
   ASSERT_GE(rest.size(), 5u) << resumed.err;
   ASSERT_LE(rest.size(), 6u) << resumed.err;
   EXPECT_EQ(rest.front().find("  10.0 %"), std::string::npos) << rest.front();

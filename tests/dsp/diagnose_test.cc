@@ -106,8 +106,9 @@ INSTANTIATE_TEST_SUITE_P(
 // A roller spall whose impacts ring only a low resonance (950 Hz, as the full-FE record of
 // docs/BEARING_MODEL.md carries its spall in 500-1250 Hz): N205EM at 1200 rpm, 20 kHz. Bands as
 // wide as the inner-race comb (5 BPFI + f_r, 835 Hz with the search range) that start above half
-// of it begin at 1250 Hz and never hold the resonance; the narrowest band that holds the whole
-// rolling-element comb (5 f_b + f_c, 625 Hz) does: [625, 1250] Hz.
+// of it begin at 1250 Hz and never hold the resonance; bands down to the narrowest that holds
+// the whole rolling-element comb (5 f_b + f_c, 625 Hz) do, e.g. [625, 1250] or [833, 1667] Hz (the
+// one chosen here).
 TEST(Diagnose, RollerSpallRingingOnlyBelowTheWideBandsIsFound) {
   const BearingGeometry g = CatalogBearing("N205EM");
   const BearingFrequencies f = ComputeFrequencies(g, 20.0);

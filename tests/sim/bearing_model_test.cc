@@ -22,6 +22,11 @@ std::string Scene0() {
 // The coarse healthy section most tests here run (1 mm, 0.9 mm along contacts), with mu 0.1 / 0.08
 // where `rolling` (the traction the other dynamic tests use; the faceted contact locks at the
 // paper's 0.01 on this mesh, the curved one rolls), plus `extra` overrides.
+// What `spall simulate` would warn about for the paper scene with these overrides.
+std::vector<std::string> WarningsFor(const std::vector<std::string>& sets) {
+  return BearingModel(LoadScene(Scene0(), sets)).Warnings();
+}
+
 std::vector<std::string> CoarseHealthy(bool rolling, std::vector<std::string> extra) {
   std::vector<std::string> sets = {
       "mesh.size_mm=1.0", "mesh.contact_size_mm=0.9", "mesh.adapter_size_mm=2.0", "defects=[]"};
@@ -36,42 +41,38 @@ std::vector<std::string> CoarseHealthy(bool rolling, std::vector<std::string> ex
 // 0.25 mm mesh (80 facets), the curved race contact (the default; it rolls, next test) and the
 // hybrid's exact circles are not.
 TEST(BearingModelTest, WarnsWhenFacetedRollersWouldStandOnTheirFacets) {
-  auto warnings = [](std::vector<std::string> sets) {
-    return BearingModel(LoadScene(Scene0(), sets)).Warnings();
-  };
   const std::vector<std::string> coarse =
-      warnings({"mesh.size_mm=0.5", "model.race_contact=faceted"});
+      WarningsFor({"mesh.size_mm=0.5", "model.race_contact=faceted"});
   ASSERT_EQ(coarse.size(), 1u);
   EXPECT_NE(coarse[0].find("40 facets"), std::string::npos) << coarse[0];
   EXPECT_NE(coarse[0].find("<= 0.255"), std::string::npos) << coarse[0];
-  EXPECT_TRUE(warnings({"mesh.size_mm=0.5",
-                        "model.race_contact=faceted",
-                        "friction.mu_static=0.1",
-                        "friction.mu_dynamic=0.08"})
+  EXPECT_TRUE(WarningsFor({"mesh.size_mm=0.5",
+                           "model.race_contact=faceted",
+                           "friction.mu_static=0.1",
+                           "friction.mu_dynamic=0.08"})
                   .empty());
   EXPECT_TRUE(
-      warnings({"mesh.size_mm=0.5", "model.race_contact=faceted", "mesh.contact_size_mm=0.25"})
+      WarningsFor({"mesh.size_mm=0.5", "model.race_contact=faceted", "mesh.contact_size_mm=0.25"})
           .empty());
-  EXPECT_TRUE(warnings({"mesh.size_mm=0.5"}).empty());  // curved
-  EXPECT_TRUE(warnings({"mesh.size_mm=0.5", "model.fidelity=hybrid"}).empty());
+  EXPECT_TRUE(WarningsFor({"mesh.size_mm=0.5"}).empty());  // curved
+  EXPECT_TRUE(WarningsFor({"mesh.size_mm=0.5", "model.fidelity=hybrid"}).empty());
 }
 
 // The curved race contact on the paper's 0.25 mm rims (80 arcs) has created energy where a loaded
 // rim node dents (docs/CONTACT.md, open defect): warned about, pointing at the faceted contact;
 // the 0.5 mm rims (40 arcs) and the hybrid are not.
 TEST(BearingModelTest, WarnsAboutCurvedRaceContactOnFineRims) {
-  auto warnings = [](std::vector<std::string> sets) {
-    return BearingModel(LoadScene(Scene0(), sets)).Warnings();
-  };
-  const std::vector<std::string> fine = warnings({"mesh.size_mm=0.5", "mesh.contact_size_mm=0.25"});
+  const std::vector<std::string> fine =
+      WarningsFor({"mesh.size_mm=0.5", "mesh.contact_size_mm=0.25"});
   ASSERT_EQ(fine.size(), 1u);
   EXPECT_NE(fine[0].find("80 facets"), std::string::npos) << fine[0];
   EXPECT_NE(fine[0].find("race_contact = \"faceted\""), std::string::npos) << fine[0];
   EXPECT_TRUE(
-      warnings({"mesh.size_mm=0.5", "mesh.contact_size_mm=0.25", "model.race_contact=faceted"})
+      WarningsFor({"mesh.size_mm=0.5", "mesh.contact_size_mm=0.25", "model.race_contact=faceted"})
           .empty());
   EXPECT_TRUE(
-      warnings({"mesh.size_mm=0.5", "mesh.contact_size_mm=0.25", "model.fidelity=hybrid"}).empty());
+      WarningsFor({"mesh.size_mm=0.5", "mesh.contact_size_mm=0.25", "model.fidelity=hybrid"})
+          .empty());
 }
 
 // The paper's friction (mu 0.01 / 0.005) on the coarse 1 mm section (24 rim facets, mu x facets
