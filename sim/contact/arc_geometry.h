@@ -112,6 +112,63 @@ bool ArcClosestPoints(const Arc<T>& arc, const T m[4], const Arc<T>* marc, ArcPa
   c.xi_master = ChordParameter(m[0], m[1], m[2], m[3], c.qx, c.qy);
   return true;
 }
+// Closest points of a convex slave arc and a master NODE (nx_, ny_): where the master surface has a
+// ridge (two arcs meeting at an angle pointing at the slave), the slave circle's closest master
+// point is the node itself for every centre in the wedge between the two arcs' end normals. The
+// gap is the node's distance from the circle, along the line from the node to the circle's centre;
+// at the wedge's edges it equals, with its gradient, the neighbouring arc's (the distance to a
+// curve is C1 across a ridge), so contact passes arc -> node -> arc without a jump. xi_master is 1:
+// the node is the end (b) of the master segment the candidate is filed under.
+template <typename T>
+bool ArcNodeClosestPoints(const Arc<T>& arc, const T& nx_, const T& ny_, ArcPair<T>* out) {
+  using std::sqrt;
+  ArcPair<T>& c = *out;
+  const T dx = arc.cx - nx_, dy = arc.cy - ny_, d2 = dx * dx + dy * dy;
+  if (!(d2 > 0.0)) return false;
+  const T d = sqrt(d2);
+  c.nx = dx / d, c.ny = dy / d;
+  c.gap = d - arc.radius;
+  c.px = arc.cx - arc.radius * c.nx;
+  c.py = arc.cy - arc.radius * c.ny;
+  c.qx = nx_, c.qy = ny_;
+  c.xi_master = T(1.0);
+  return true;
+}
+
+// Closest points of a slave NODE (px_, py_) and a master segment (its arc `marc`, or the straight
+// segment m when null): the same ridge, on the slave side (a rim node between two arcs that kink
+// towards the master, the neighbours of a dented node). xi is 1 (the node ends the slave segment
+// the candidate is filed under).
+template <typename T>
+bool NodeArcClosestPoints(
+    const T& px_, const T& py_, const T m[4], const Arc<T>* marc, ArcPair<T>* out) {
+  using std::sqrt;
+  ArcPair<T>& c = *out;
+  c.px = px_, c.py = py_;
+  if (marc) {
+    const T dx = px_ - marc->cx, dy = py_ - marc->cy, d2 = dx * dx + dy * dy;
+    if (!(d2 > 0.0)) return false;
+    const T d = sqrt(d2), ux = dx / d, uy = dy / d;
+    c.qx = marc->cx + marc->radius * ux;
+    c.qy = marc->cy + marc->radius * uy;
+    if (marc->convex) {
+      c.gap = d - marc->radius;
+      c.nx = ux, c.ny = uy;
+    } else {
+      c.gap = marc->radius - d;
+      c.nx = -ux, c.ny = -uy;
+    }
+  } else {
+    if (!(ChordNormal(m[0], m[1], m[2], m[3], &c.nx, &c.ny) > 0.0)) return false;
+    c.gap = (px_ - m[0]) * c.nx + (py_ - m[1]) * c.ny;
+    c.qx = px_ - c.gap * c.nx;
+    c.qy = py_ - c.gap * c.ny;
+  }
+  c.xi_master = ChordParameter(m[0], m[1], m[2], m[3], c.qx, c.qy);
+  c.xi = T(1.0);
+  return true;
+}
+
 // The same from the segments' nodes s (slave, curvature ks > 0) and m (curvature km, 0: straight),
 // with the slave's chord parameter too.
 template <typename T>
@@ -120,6 +177,21 @@ bool ArcClosestPoints(const T s[4], double ks, const T m[4], double km, ArcPair<
   Arc<T> marc;
   if (km != 0.0) marc = ArcThrough(m[0], m[1], m[2], m[3], km);
   if (!ArcClosestPoints(arc, m, km != 0.0 ? &marc : nullptr, out)) return false;
+  out->xi = ChordParameter(s[0], s[1], s[2], s[3], out->px, out->py);
+  return true;
+}
+// The same for a slave node (p: its x, y) and a master segment m of curvature km.
+template <typename T>
+bool NodeArcClosestPoints(const T p[2], const T m[4], double km, ArcPair<T>* out) {
+  Arc<T> marc;
+  if (km != 0.0) marc = ArcThrough(m[0], m[1], m[2], m[3], km);
+  return NodeArcClosestPoints(p[0], p[1], m, km != 0.0 ? &marc : nullptr, out);
+}
+// The same for a slave arc and a master node (n: its x, y).
+template <typename T>
+bool ArcNodeClosestPoints(const T s[4], double ks, const T n[2], ArcPair<T>* out) {
+  const Arc<T> arc = ArcThrough(s[0], s[1], s[2], s[3], ks);
+  if (!ArcNodeClosestPoints(arc, n[0], n[1], out)) return false;
   out->xi = ChordParameter(s[0], s[1], s[2], s[3], out->px, out->py);
   return true;
 }

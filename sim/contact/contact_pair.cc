@@ -357,6 +357,10 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
           fx[nodes[j]] -= slot.fn * c.grad[2 * j];
           fy[nodes[j]] -= slot.fn * c.grad[2 * j + 1];
         }
+        if (c.third_node >= 0) {
+          fx[c.third_node] -= slot.fn * c.grad[8];
+          fy[c.third_node] -= slot.fn * c.grad[9];
+        }
         const double ftx = c.weight * slot.ftx, fty = c.weight * slot.fty;
         SpreadAtArcPoint(x, y, nodes[0], nodes[1], c.at.xi, c.at.px, c.at.py, ftx, fty, fx, fy);
         SpreadAtArcPoint(
@@ -446,7 +450,8 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
         pass.grid.Candidates(0.5 * (x[sa] + x[sb]), 0.5 * (y[sa] + y[sb]));
     if (candidates.empty()) continue;
     const Arc arc = ArcThrough(x[sa], y[sa], x[sb], y[sb], kappa);
-    for (int m : candidates) {
+    // An arc's closest points on master segment m (its arc, cached once per step, or chord).
+    auto project = [&](const Arc<double>& slave_arc, int m, ArcPair<double>* g) {
       const int ma = master.nodes[master.segment_a[m]], mb = master.nodes[master.segment_b[m]];
       const double mp[4] = {x[ma], y[ma], x[mb], y[mb]};
       const bool master_arc = master.curved() && master.segment_curvature[m] != 0.0;
@@ -454,16 +459,85 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
         pass.master_arcs[m] = ArcThrough(mp[0], mp[1], mp[2], mp[3], master.segment_curvature[m]);
         pass.master_arc_stamp[m] = pass.arc_stamp;
       }
-      ArcPair<double> g;
-      if (!ArcClosestPoints(arc, mp, master_arc ? &pass.master_arcs[m] : nullptr, &g)) continue;
-      if (!(g.xi_master >= -kSpanTolerance && g.xi_master <= 1.0 + kSpanTolerance)) continue;
-      g.xi = ChordParameter(x[sa], y[sa], x[sb], y[sb], g.px, g.py);
-      if (!(g.xi >= -kSpanTolerance && g.xi <= 1.0 + kSpanTolerance)) continue;
+      return ArcClosestPoints(slave_arc, mp, master_arc ? &pass.master_arcs[m] : nullptr, g);
+    };
+    auto in_span = [](double xi) { return xi >= -kSpanTolerance && xi <= 1.0 + kSpanTolerance; };
+    // A ridge's point also records the third node and curvature that bound its wedge and where
+    // in the wedge it is (0 .. 1 between the two arcs' end normals).
+    auto add = [&](const ArcPair<double>& g,
+                   int slave_segment,
+                   int m,
+                   bool slave_node,
+                   bool master_node,
+                   int third_node = -1,
+                   double third_curvature = 0.0,
+                   double wedge = 0.0) {
       ArcContact c;
       c.at = g;
-      c.slave_segment = k;
+      c.slave_segment = slave_segment;
       c.master_segment = m;
+      c.slave_node = slave_node;
+      c.master_node = master_node;
+      c.third_node = third_node;
+      c.third_curvature = third_curvature;
+      c.wedge = wedge;
       pass.arc_candidates.push_back(c);
+    };
+    // The rim node where this arc starts, when it joins the previous convex arc (a ridge there
+    // is this arc's and the previous one's points falling past that node on either side).
+    const int before = slave.segment_before[la];
+    const bool ridge_possible = before >= 0 && slave.segment_curvature[before] > 0.0;
+    for (int m : candidates) {
+      ArcPair<double> g;
+      if (!project(arc, m, &g)) continue;
+      g.xi = ChordParameter(x[sa], y[sa], x[sb], y[sb], g.px, g.py);
+      if (g.xi < -kSpanTolerance) {
+        // Before this arc's start: the node sa is the closest slave point if the previous arc's
+        // point falls past its end.
+        if (!ridge_possible) continue;
+        const int pa = slave.nodes[slave.segment_a[before]];
+        const Arc prev = ArcThrough(x[pa], y[pa], x[sa], y[sa], slave.segment_curvature[before]);
+        ArcPair<double> h;
+        if (!project(prev, m, &h)) continue;
+        const double past = ChordParameter(x[pa], y[pa], x[sa], y[sa], h.px, h.py) - 1.0;
+        if (!(past > kSpanTolerance)) continue;
+        const double wedge = past / (past - g.xi);
+        const int ma = master.nodes[master.segment_a[m]], mb = master.nodes[master.segment_b[m]];
+        const double mp[4] = {x[ma], y[ma], x[mb], y[mb]};
+        const bool master_arc = master.curved() && master.segment_curvature[m] != 0.0;
+        if (!NodeArcClosestPoints(
+                x[sa], y[sa], mp, master_arc ? &pass.master_arcs[m] : nullptr, &h) ||
+            !in_span(h.xi_master))
+          continue;
+        add(h, before, m, true, false, sb, kappa, wedge);
+        continue;
+      }
+      if (g.xi_master > 1.0 + kSpanTolerance) {
+        // Past m's end: a ridge if it also falls before the start of the next arc (both arcs of
+        // one curved surface, bending the same way: a raceway's rim, not a pocket's corner).
+        const int node = master.segment_b[m], next = master.segment_after[node];
+        ArcPair<double> h;
+        if (next < 0 || !master.curved() || master.segment_curvature[m] == 0.0 ||
+            master.segment_curvature[m] * master.segment_curvature[next] <= 0.0 ||
+            !project(arc, next, &h) || !(h.xi_master < -kSpanTolerance))
+          continue;
+        const double past = g.xi_master - 1.0, wedge = past / (past - h.xi_master);
+        const int n = master.nodes[node];
+        if (!ArcNodeClosestPoints(arc, x[n], y[n], &g)) continue;
+        g.xi = ChordParameter(x[sa], y[sa], x[sb], y[sb], g.px, g.py);
+        if (!in_span(g.xi)) continue;
+        add(g,
+            k,
+            m,
+            false,
+            true,
+            master.nodes[master.segment_b[next]],
+            master.segment_curvature[next],
+            wedge);
+        continue;
+      }
+      if (!in_span(g.xi_master) || !in_span(g.xi)) continue;
+      add(g, k, m, false, false);
     }
   }
   // One contact per pass: the deepest point and the points of the slave arcs chained to it (a
@@ -505,58 +579,143 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
 }
 
 namespace {
-// A blend point's weight: vanishes, with its slope, where the point leaves either span, so points
-// join and leave the blend smoothly. T = double or a Jet (its gradient).
+// The blend's span factor: (xi (1 - xi))^2 vanishes, with its slope, at both ends of a span, so a
+// point joins and leaves the blend smoothly. T = double or a Jet (its gradient).
 template <typename T>
-T BlendWeight(const T& xi, const T& xi_master) {
-  const T w = xi * (1.0 - xi) * xi_master * (1.0 - xi_master);
+T SpanWeight(const T& xi) {
+  const T w = xi * (1.0 - xi);
   return w * w;
+}
+// A ridge node's span is its wedge: the factor on its side is SpanWeight(wedge parameter), which
+// vanishes where the wedge hands over to an arc's span end (also vanishing there).
+template <typename T>
+T SlaveFactor(const ArcPair<T>& g, bool slave_node, const T& wedge) {
+  return SpanWeight(slave_node ? wedge : g.xi);
+}
+template <typename T>
+T MasterFactor(const ArcPair<T>& g, bool master_node, const T& wedge) {
+  return SpanWeight(master_node ? wedge : g.xi_master);
+}
+// Where a ridge point is in its wedge, 0 .. 1 (FindArcContacts' values, here on Jets for the
+// gradient). Slave ridge at node s[2..3] between the arc s[0..3] (curvature ks) and the next arc
+// s[2..3] -> t (kt): how far the first arc's closest point to master m falls past its end and the
+// next one's before its start. Master ridge at m[2..3] between arc m and the next master arc
+// m[2..3] -> t (kt), the same for the slave arc's closest points on them.
+template <typename T>
+T SlaveWedge(const T s[4], double ks, const T t[2], double kt, const T m[4], double km) {
+  const T next[4] = {s[2], s[3], t[0], t[1]};
+  ArcPair<T> a, b;
+  ArcClosestPoints(s, ks, m, km, &a);
+  ArcClosestPoints(next, kt, m, km, &b);
+  const T past = a.xi - 1.0;
+  return past / (past - b.xi);
+}
+template <typename T>
+T MasterWedge(const T s[4], double ks, const T m[4], double km, const T t[2], double kt) {
+  const T next[4] = {m[2], m[3], t[0], t[1]};
+  ArcPair<T> a, b;
+  ArcClosestPoints(s, ks, m, km, &a);
+  ArcClosestPoints(s, ks, next, kt, &b);
+  const T past = a.xi_master - 1.0;
+  return past / (past - b.xi_master);
 }
 }  // namespace
 
 void ContactPair::BlendArcContacts(Pass& pass, const double* x, const double* y) const {
-  // p = sum w_i p_i / sum w_i over the blend's points, p_i = -gap_i: its gradient, weights
-  // included, by forward-mode automatic differentiation of each point's geometry over its 8
-  // coordinates (ceres::Jet): grad_i = (w_i grad p_i + (p_i - p) grad w_i) / sum w. With that the
-  // normal force -f_n grad p is conservative for the blended penalty k p^2 / 2.
-  using Jet = ceres::Jet<double, 8>;
+  // p = sum w_c p_c / sum w_c over the blend's points, w_c = S_c omega_c: the slave span factor
+  // S_c = SpanWeight(xi_c) times the point's share of its slave arc's master factors,
+  // omega_c = M_c / sum_g M, M_c = SpanWeight(xi_master_c), over the points g of the same slave
+  // arc or ridge node (its points on neighbouring master arcs). A ridge point's factor on its
+  // node's side is SpanWeight of its place in the wedge.
+  // Why the share: with plain products S_c M_c, a slave arc's point crossing a master node has
+  // both its points at a master span end, its weight ~ 0 beside a second arc's point near its own
+  // end, and the ratio of the two vanishing weights swung over nanometres of motion (200x the
+  // penalty stiffness on the 0.25 mm mesh: session 8's energy defect, docs/CONTACT.md). The share
+  // keeps the slave arc's weight whole across the node.
+  // The gradient, weights included, by forward-mode automatic differentiation of each point's
+  // geometry over its coordinates (ceres::Jet):
+  //   dp = (1/W) sum_c [w_c dp_c + (p_c - p) omega_c dS_c + ((p_c - p) S_c - A_g) dM_c / sum_g M],
+  //   A_g = sum_{c in g} omega_c (p_c - p) S_c,  W = sum w_c.
+  // With that the normal force -f_n grad p is conservative for the blended penalty k p^2 / 2.
+  using Jet = ceres::Jet<double, kArcCoordinates>;
   const ContactSurface& slave = pass.slave;
   const ContactSurface& master = pass.master;
-  double total = 0.0;
-  for (ArcContact& c : pass.arc_blend) {
-    c.weight = BlendWeight(c.at.xi, c.at.xi_master);
-    total += c.weight;
+  std::vector<ArcContact>& blend = pass.arc_blend;
+  auto group_end = [&](size_t g0) {  // the run of points of one slave arc (or ridge node)
+    size_t g1 = g0;
+    while (g1 < blend.size() && blend[g1].slave_segment == blend[g0].slave_segment &&
+           blend[g1].slave_node == blend[g0].slave_node)
+      ++g1;
+    return g1;
+  };
+  double total = 0.0, penetration = 0.0;
+  for (size_t g0 = 0, g1; g0 < blend.size(); g0 = g1) {
+    g1 = group_end(g0);
+    double sum = 0.0;
+    for (size_t i = g0; i < g1; ++i)
+      sum += blend[i].master_sum = MasterFactor(blend[i].at, blend[i].master_node, blend[i].wedge);
+    for (size_t i = g0; i < g1; ++i) {
+      ArcContact& c = blend[i];
+      c.omega = sum > 0.0 ? c.master_sum / sum : 1.0 / double(g1 - g0);
+      c.master_sum = sum;
+      c.weight = SlaveFactor(c.at, c.slave_node, c.wedge) * c.omega;
+      total += c.weight;
+      penetration -= c.weight * c.at.gap;
+    }
   }
   if (!(total > kMinBlendWeight)) {  // all at span ends (a node): the deepest alone, weight fixed
     size_t deepest = 0;
-    for (size_t i = 1; i < pass.arc_blend.size(); ++i)
-      if (pass.arc_blend[i].at.gap < pass.arc_blend[deepest].at.gap) deepest = i;
-    pass.arc_blend[0] = pass.arc_blend[deepest];
-    pass.arc_blend.resize(1);
-    pass.arc_blend[0].weight = total = 1.0;
+    for (size_t i = 1; i < blend.size(); ++i)
+      if (blend[i].at.gap < blend[deepest].at.gap) deepest = i;
+    blend[0] = blend[deepest];
+    blend.resize(1);
+    blend[0].weight = blend[0].omega = total = 1.0;
+    blend[0].master_sum = 0.0;
+    penetration = -blend[0].at.gap;
+  } else {
+    penetration /= total;
   }
-  double penetration = 0.0;
-  for (ArcContact& c : pass.arc_blend) {
-    c.weight /= total;
-    penetration -= c.weight * c.at.gap;
-  }
-  const bool fixed_weight = pass.arc_blend.size() == 1;
-  for (ArcContact& c : pass.arc_blend) {
-    const std::array<int, 4> nodes = ArcNodes(pass, c);
-    Jet s[4], m[4];
-    for (int j = 0; j < 2; ++j) {
-      s[2 * j] = Jet(x[nodes[j]], 2 * j);
-      s[2 * j + 1] = Jet(y[nodes[j]], 2 * j + 1);
-      m[2 * j] = Jet(x[nodes[2 + j]], 4 + 2 * j);
-      m[2 * j + 1] = Jet(y[nodes[2 + j]], 5 + 2 * j);
+  const bool fixed_weight = blend.size() == 1;
+  for (size_t g0 = 0, g1; g0 < blend.size(); g0 = g1) {
+    g1 = group_end(g0);
+    double a_g = 0.0;
+    for (size_t i = g0; i < g1; ++i) {
+      const ArcContact& c = blend[i];
+      a_g += c.omega * (-c.at.gap - penetration) * SlaveFactor(c.at, c.slave_node, c.wedge);
     }
-    const double km = master.curved() ? master.segment_curvature[c.master_segment] : 0.0;
-    ArcPair<Jet> g;
-    ArcClosestPoints(s, slave.segment_curvature[c.slave_segment], m, km, &g);
-    const Jet w = BlendWeight(g.xi, g.xi_master);
-    for (int d = 0; d < 8; ++d) {
-      c.grad[d] = -c.weight * g.gap.v[d];
-      if (!fixed_weight) c.grad[d] += (-c.at.gap - penetration) * w.v[d] / total;
+    for (size_t i = g0; i < g1; ++i) {
+      ArcContact& c = blend[i];
+      const std::array<int, 4> nodes = ArcNodes(pass, c);
+      Jet s[4], m[4], t[2];  // t: a ridge's third node (the next arc's end), coordinates 8, 9
+      for (int j = 0; j < 2; ++j) {
+        s[2 * j] = Jet(x[nodes[j]], 2 * j);
+        s[2 * j + 1] = Jet(y[nodes[j]], 2 * j + 1);
+        m[2 * j] = Jet(x[nodes[2 + j]], 4 + 2 * j);
+        m[2 * j + 1] = Jet(y[nodes[2 + j]], 5 + 2 * j);
+      }
+      if (c.third_node >= 0) t[0] = Jet(x[c.third_node], 8), t[1] = Jet(y[c.third_node], 9);
+      const double ks = slave.segment_curvature[c.slave_segment];
+      const double km = master.curved() ? master.segment_curvature[c.master_segment] : 0.0;
+      ArcPair<Jet> g;
+      Jet wedge(0.0);
+      if (c.slave_node) {
+        NodeArcClosestPoints(&s[2], m, km, &g);  // the node is the slave segment's end b
+        wedge = SlaveWedge(s, ks, t, c.third_curvature, m, km);
+      } else if (c.master_node) {
+        ArcNodeClosestPoints(s, ks, &m[2], &g);  // the node is the master segment's end b
+        wedge = MasterWedge(s, ks, m, km, t, c.third_curvature);
+      } else {
+        ArcClosestPoints(s, ks, m, km, &g);
+      }
+      c.weight /= total;
+      const double dp = -c.at.gap - penetration;
+      const Jet sf = SlaveFactor(g, c.slave_node, wedge),
+                mf = MasterFactor(g, c.master_node, wedge);
+      const double m_coef = c.master_sum > 0.0 ? (dp * sf.a - a_g) / c.master_sum : 0.0;
+      for (int d = 0; d < kArcCoordinates; ++d) {
+        c.grad[d] = -c.weight * g.gap.v[d];
+        if (!fixed_weight) c.grad[d] += (dp * c.omega * sf.v[d] + m_coef * mf.v[d]) / total;
+      }
     }
   }
 }
@@ -599,6 +758,7 @@ void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) 
       ny += c.weight * c.at.ny;
       for (int j = 0; j < 4; ++j)
         vn -= c.grad[2 * j] * vx[nodes[j]] + c.grad[2 * j + 1] * vy[nodes[j]];
+      if (c.third_node >= 0) vn -= c.grad[8] * vx[c.third_node] + c.grad[9] * vy[c.third_node];
       // Slip of the arc points (the work-conjugate of SpreadAtArcPoint), blended.
       double tsx, tsy, tmx, tmy;
       ArcPointVelocity(x, y, vx, vy, nodes[0], nodes[1], c.at.xi, c.at.px, c.at.py, &tsx, &tsy);

@@ -136,11 +136,23 @@ class ContactPair : public solver::ForceContributor {
     double fn = 0.0, penetration = 0.0;
     double stored = 0.0, friction_work = 0.0, damping_work = 0.0;
   };
-  struct ArcContact {  // a convex slave arc's closest point to one master segment, in both spans
+  // A convex slave arc's closest point to one master segment (in both spans) or, at a ridge of
+  // the master surface, to the master node ending that segment (master_node; xi_master = 1).
+  static constexpr int kArcCoordinates = 10;  // an arc contact point's gradient: 5 nodes x, y
+  struct ArcContact {
     int slave_segment = -1, master_segment = -1;
+    bool slave_node = false, master_node = false;
     ArcPair<double> at{};  // gap, normal, points, chord parameters
     double weight = 0.0;   // share in the blended contact (the blend's sum to 1)
-    double grad[8] = {};   // d(penetration)/d(slave a, slave b, master a, master b; x, y each)
+    // d(penetration)/d(slave a, slave b, master a, master b, third node; x, y each)
+    double grad[kArcCoordinates] = {};
+    // A ridge point's wedge (FindArcContacts): the node beyond the ridge that bounds it (the
+    // next slave or master arc's end; -1 otherwise), that arc's curvature, the point's place in
+    // the wedge (0 .. 1).
+    int third_node = -1;
+    double third_curvature = 0.0, wedge = 0.0;
+    // BlendArcContacts: the point's share of its slave arc's master factors, and their sum.
+    double omega = 0.0, master_sum = 0.0;
   };
   struct Pass {
     ContactSurface slave, master;
