@@ -569,6 +569,14 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
   };
   for (const ArcContact& c : cand)
     if (in_chain(c.slave_segment)) pass.arc_blend.push_back(c);
+  // BlendArcContacts shares weights within the points of one slave arc or ridge node, taken as a
+  // run: a ridge point is filed under the arc before its node but found while searching the arc
+  // after it, so order the blend by that key (insertion sort: a handful of points, no allocation).
+  auto key = [](const ArcContact& c) { return 2 * c.slave_segment + (c.slave_node ? 1 : 0); };
+  std::vector<ArcContact>& blend = pass.arc_blend;
+  for (size_t i = 1; i < blend.size(); ++i)
+    for (size_t j = i; j > 0 && key(blend[j - 1]) > key(blend[j]); --j)
+      std::swap(blend[j - 1], blend[j]);
   // Nodes the arc contact stands for: the blend's arcs' ends, and every node between two convex
   // arcs (an interior point of the smooth rim; node contact there would count the overlap twice).
   for (const ArcContact& b : pass.arc_blend) {
