@@ -129,7 +129,8 @@ class BearingModel {
   std::vector<std::string> Warnings() const;
   static constexpr double kRollingMinMuFacets = 0.8;
   // Curved race contact: rims with a finer node spacing than this (m) are warned about (energy
-  // created at dented nodes, measured at 0.255 mm; 0.51 mm balanced in every run so far).
+  // created at dented nodes, measured at 0.255 mm; 0.51 mm balanced in every run so far; the
+  // measured figures are quoted in Warnings()' message and docs/CONTACT.md).
   static constexpr double kCurvedMinRimSpacing = 0.35e-3;
 
  private:

@@ -31,14 +31,18 @@
 // circle that is one point; where the rim is dented under load at a node (a valley between two
 // arcs) it is two, and taking only the deeper one flips between them every step, which pumps
 // energy into the dent (measured: 0.5 % of the total in 7 ms at 0.5 mm). So the points are blended:
-// penetration p = sum a_i p_i with weights a_i ~ xi (1 - xi) xi_m (1 - xi_m) that vanish at the
-// span ends (a point enters and leaves the blend continuously), normal force k p a_i along each
-// point's line of centres through the arcs' centres (SpreadNormal: the gradient of k p^2 / 2 while
-// the chords stretch), one tangential spring for the contact, its force spread at the arc points
-// with the same weights. The blend's nodes take no node contact, nor do nodes between two convex
-// arcs; a vertex next to a straight segment (a spall's corner) keeps node-to-arc contact, and so
-// does every node when no arc finds its closest point in span (a kink pointing at the master).
-// The spring moves to or from a node's when contact passes between nodes and arcs.
+// penetration p = sum a_i p_i with weights a_i = S_i omega_i: the slave span factor
+// [xi (1 - xi)]^2 times the point's share of its slave arc's master span factors [xi_m (1 -
+// xi_m)]^2 (both vanish at span ends, so a point enters and leaves the blend continuously; the
+// share keeps an arc's weight whole while its point crosses a master node; BlendArcContacts),
+// normal force -f_n grad p (the gradient of k p^2 / 2, weights included), one tangential spring for
+// the contact, its force spread at the arc points with the same weights. Ridge nodes (where two
+// arcs of one surface kink towards the other: beside a dented node) touch as points of the blend
+// too, weighted by their place in the wedge between the two arcs' end normals. The blend's nodes
+// take no node contact, nor do nodes between two convex arcs; a vertex next to a straight segment
+// (a spall's corner) keeps node-to-arc contact, and so does every node when no arc finds its
+// closest point in span (a spall facing the master). The spring moves to or from a node's when
+// contact passes between nodes and arcs.
 //
 // Cost: surfaces far apart are rejected by bounding boxes (two min/max passes over the surface
 // nodes, no search). The grid is rebuilt only when a master node has moved margin/2. All buffers
@@ -136,9 +140,10 @@ class ContactPair : public solver::ForceContributor {
     double fn = 0.0, penetration = 0.0;
     double stored = 0.0, friction_work = 0.0, damping_work = 0.0;
   };
-  // A convex slave arc's closest point to one master segment (in both spans) or, at a ridge of
-  // the master surface, to the master node ending that segment (master_node; xi_master = 1).
   static constexpr int kArcCoordinates = 10;  // an arc contact point's gradient: 5 nodes x, y
+  // A convex slave arc's closest point to one master segment (in both spans) or, at a ridge, a
+  // node's: the master node ending that segment (master_node; xi_master = 1), or the slave node
+  // ending slave_segment against the master segment (slave_node; xi = 1).
   struct ArcContact {
     int slave_segment = -1, master_segment = -1;
     bool slave_node = false, master_node = false;
