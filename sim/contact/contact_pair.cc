@@ -494,7 +494,9 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
       if (g.xi < -kSpanTolerance) {
         // Before this arc's start: the node sa is the closest slave point if the previous arc's
         // point falls past its end.
-        if (!ridge_possible) continue;
+        // (Only next to the node: a kink turns the closest point by r x kink, well under a
+        // segment; most rim arcs' points lie far outside their spans and skip this.)
+        if (!ridge_possible || g.xi < -1.0) continue;
         const int pa = slave.nodes[slave.segment_a[before]];
         const Arc prev = ArcThrough(x[pa], y[pa], x[sa], y[sa], slave.segment_curvature[before]);
         ArcPair<double> h;
@@ -517,7 +519,8 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
         // one curved surface, bending the same way: a raceway's rim, not a pocket's corner).
         const int node = master.segment_b[m], next = master.segment_after[node];
         ArcPair<double> h;
-        if (next < 0 || !master.curved() || master.segment_curvature[m] == 0.0 ||
+        if (g.xi_master > 2.0 || next < 0 || !master.curved() ||
+            master.segment_curvature[m] == 0.0 ||
             master.segment_curvature[m] * master.segment_curvature[next] <= 0.0 ||
             !project(arc, next, &h) || !(h.xi_master < -kSpanTolerance))
           continue;
