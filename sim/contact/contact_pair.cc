@@ -450,16 +450,22 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
         pass.grid.Candidates(0.5 * (x[sa] + x[sb]), 0.5 * (y[sa] + y[sb]));
     if (candidates.empty()) continue;
     const Arc arc = ArcThrough(x[sa], y[sa], x[sb], y[sb], kappa);
-    // An arc's closest points on master segment m (its arc, cached once per step, or chord).
-    auto project = [&](const Arc<double>& slave_arc, int m, ArcPair<double>* g) {
+    // Master segment m's nodes and its arc (cached once per step; null for a straight segment).
+    auto master_segment = [&](int m, double mp[4]) -> const Arc<double>* {
       const int ma = master.nodes[master.segment_a[m]], mb = master.nodes[master.segment_b[m]];
-      const double mp[4] = {x[ma], y[ma], x[mb], y[mb]};
-      const bool master_arc = master.curved() && master.segment_curvature[m] != 0.0;
-      if (master_arc && pass.master_arc_stamp[m] != pass.arc_stamp) {  // once per step
+      mp[0] = x[ma], mp[1] = y[ma], mp[2] = x[mb], mp[3] = y[mb];
+      if (!master.curved() || master.segment_curvature[m] == 0.0) return nullptr;
+      if (pass.master_arc_stamp[m] != pass.arc_stamp) {  // once per step
         pass.master_arcs[m] = ArcThrough(mp[0], mp[1], mp[2], mp[3], master.segment_curvature[m]);
         pass.master_arc_stamp[m] = pass.arc_stamp;
       }
-      return ArcClosestPoints(slave_arc, mp, master_arc ? &pass.master_arcs[m] : nullptr, g);
+      return &pass.master_arcs[m];
+    };
+    // An arc's closest points on master segment m (its arc, or its chord).
+    auto project = [&](const Arc<double>& slave_arc, int m, ArcPair<double>* g) {
+      double mp[4];
+      const Arc<double>* marc = master_segment(m, mp);
+      return ArcClosestPoints(slave_arc, mp, marc, g);
     };
     auto in_span = [](double xi) { return xi >= -kSpanTolerance && xi <= 1.0 + kSpanTolerance; };
     // A ridge's point also records the third node and curvature that bound its wedge and where
@@ -504,13 +510,9 @@ void ContactPair::FindArcContacts(Pass& pass, const double* x, const double* y) 
         const double past = ChordParameter(x[pa], y[pa], x[sa], y[sa], h.px, h.py) - 1.0;
         if (!(past > kSpanTolerance)) continue;
         const double wedge = past / (past - g.xi);
-        const int ma = master.nodes[master.segment_a[m]], mb = master.nodes[master.segment_b[m]];
-        const double mp[4] = {x[ma], y[ma], x[mb], y[mb]};
-        const bool master_arc = master.curved() && master.segment_curvature[m] != 0.0;
-        if (!NodeArcClosestPoints(
-                x[sa], y[sa], mp, master_arc ? &pass.master_arcs[m] : nullptr, &h) ||
-            !in_span(h.xi_master))
-          continue;
+        double mp[4];
+        const Arc<double>* marc = master_segment(m, mp);
+        if (!NodeArcClosestPoints(x[sa], y[sa], mp, marc, &h) || !in_span(h.xi_master)) continue;
         add(h, before, m, true, false, sb, kappa, wedge);
         continue;
       }
