@@ -501,10 +501,17 @@ Diagnosis Diagnose(const Record& record,
     if (det.component == FaultComponent::kRollingElement && !d.measured_f_b_hz) {
       const FamilyRates r = MeasureRates(det, fam, kin.cage_hz, shaft_for_rates);
       d.measured_f_b_hz = r.fundamental_hz;
-      if (r.sideband_measured) d.measured_f_c_hz = r.sideband_hz;
+      const CageRateMeasurement fc =
+          MeasureRollerCageRate(d.normalized, det, fam, kin.cage_hz, shaft_for_rates, dopt);
+      if (fc.hz > 0.0) {
+        d.measured_f_c_hz = fc.hz;
+        d.f_c_source = fc.Source();
+      }
     }
-    if (det.component == FaultComponent::kCage && !d.measured_f_c_hz)
+    if (det.component == FaultComponent::kCage && !d.measured_f_c_hz) {
       d.measured_f_c_hz = det.fundamental_hz;
+      d.f_c_source = "cage comb";
+    }
   }
   if (d.measured_f_b_hz) d.f_b_slip_percent = (*d.measured_f_b_hz / kin.f_b_hz - 1.0) * 100.0;
   if (d.measured_f_c_hz) d.f_c_slip_percent = (*d.measured_f_c_hz / kin.cage_hz - 1.0) * 100.0;
@@ -606,6 +613,7 @@ std::string Diagnosis::ToJson(int indent) const {
   j["measured"] = {{"shaft_hz", Opt(measured_shaft_hz)},
                    {"f_b_hz", Opt(measured_f_b_hz)},
                    {"f_c_hz", Opt(measured_f_c_hz)},
+                   {"f_c_source", f_c_source},
                    {"slip_percent", Opt(f_b_slip_percent)},
                    {"f_c_slip_percent", Opt(f_c_slip_percent)}};
   j["statistics"] = {{"mean", statistics.mean},
@@ -715,7 +723,8 @@ std::string Diagnosis::BriefReport() const {
     return std::string(b);
   };
   out += "measured f_b: " + opt(measured_f_b_hz, f_b_slip_percent) +
-         ", f_c: " + opt(measured_f_c_hz, f_c_slip_percent) + "\n";
+         ", f_c: " + opt(measured_f_c_hz, f_c_slip_percent) +
+         (measured_f_c_hz ? " from " + f_c_source : std::string()) + "\n";
   std::snprintf(buf,
                 sizeof buf,
                 "time statistics: rms %.4g, peak %.4g, crest factor %.2f, kurtosis %.2f%s%s\n",

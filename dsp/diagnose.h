@@ -85,6 +85,9 @@ struct Diagnosis {
   std::optional<double> measured_shaft_hz;
   std::optional<double> measured_f_b_hz, measured_f_c_hz;
   std::optional<double> f_b_slip_percent, f_c_slip_percent;  // measured / kinematic - 1, in %
+  // What measured f_c: CageRateMeasurement::Source() of a roller spall (dsp/explain.h), or
+  // "cage comb"; empty when f_c was not measured.
+  std::string f_c_source;
 
   // Lines claimed by the detected families (joint explanation, dsp/explain.h), claiming order.
   std::vector<ExplainedLine> explained_lines;

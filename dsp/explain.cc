@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "core/error.h"
 
@@ -123,6 +124,84 @@ FamilyRates MeasureRates(const FamilyDetection& det,
     }
   }
   return r;
+}
+
+std::string CageRateMeasurement::Source() const {
+  std::string out;
+  auto part = [&](int n, const char* one, const char* many) {
+    if (n == 0) return;
+    if (!out.empty()) out += " + ";
+    out += std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  part(sideband_pairs, "sideband pair", "sideband pairs");
+  part(modulation_lines, "modulation line", "modulation lines");
+  part(single_sidebands, "single sideband", "single sidebands");
+  return out.empty() ? "none" : out;
+}
+
+CageRateMeasurement MeasureRollerCageRate(const NormalizedSpectrum& s,
+                                          const FamilyDetection& det,
+                                          const FaultFamily& family,
+                                          double cage_hz,
+                                          double shaft_hz,
+                                          const DetectionOptions& options,
+                                          const ExplanationOptions& explanation) {
+  CageRateMeasurement out;
+  if (family.component != FaultComponent::kRollingElement || !(cage_hz > 0.0)) return out;
+  double num = 0.0, den = 0.0;  // sum w e, sum w over the estimates e
+  auto add = [&](double estimate, double weight) {
+    num += weight * estimate;
+    den += weight;
+  };
+  // Sideband pairs around a harmonic: (f_hi - f_lo) / (m_hi - m_lo), the error of two peaks over
+  // (m_hi - m_lo), i.e. weight (m_hi - m_lo)^2 / 2.
+  for (const auto& h : det.lines) {
+    if (h.line.is_sideband() || h.excluded) continue;
+    const LineEvidence *lo = nullptr, *hi = nullptr;
+    for (const auto& sb : det.lines) {
+      if (!sb.line.is_sideband() || sb.line.harmonic != h.line.harmonic || !sb.significant)
+        continue;
+      (sb.line.sideband < 0 ? lo : hi) = &sb;
+    }
+    if (!lo || !hi) continue;
+    const double orders = hi->line.sideband - lo->line.sideband;
+    add((hi->freq_hz - lo->freq_hz) / orders, 0.5 * orders * orders);
+    ++out.sideband_pairs;
+  }
+  // Modulation lines m f_c, walking upward from the best rate so far.
+  const double df = s.resolution_hz;
+  const double shaft_base = shaft_hz / std::max(1, options.shaft_order_divisor);
+  auto resolved = [&](double f) {
+    auto distance = [](double x, double base) {
+      if (!(base > 0.0)) return std::numeric_limits<double>::infinity();
+      return std::abs(x - std::max(1.0, std::nearbyint(x / base)) * base);
+    };
+    if (distance(f, shaft_base) <= df) return false;
+    for (double mains : options.mains_hz)
+      if (distance(f, mains) <= df) return false;
+    return true;
+  };
+  double rate = den > 0.0 ? num / den : cage_hz * det.scale;
+  const double forest_floor_hz =
+      0.5 * det.fundamental_hz - (explanation.sideband_orders + 0.5) * rate;
+  for (int m = 1; m * rate < forest_floor_hz; ++m) {
+    const int i = PeakNear(s, m * rate, explanation.match_bins);
+    if (i < 0 || s.PairPValue(s.z[i]) > options.line_p_value) continue;
+    const double f = InterpolatePeakHz(s.power, i, df);
+    if (!resolved(f)) continue;
+    add(f / m, double(m) * m);
+    ++out.modulation_lines;
+    rate = num / den;
+  }
+  if (den == 0.0) {
+    for (const auto& sb : det.lines) {
+      if (!sb.line.is_sideband() || !sb.significant) continue;
+      add((sb.freq_hz - sb.line.harmonic * det.fundamental_hz) / sb.line.sideband, 1.0);
+      ++out.single_sidebands;
+    }
+  }
+  if (den > 0.0) out.hz = num / den;
+  return out;
 }
 
 std::vector<double> PredictedLines(FaultComponent component,

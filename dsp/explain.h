@@ -22,6 +22,7 @@
 // -ln p of the family's own harmonics, dsp/detection.h), which the lattice coincidences feed least.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/bearing.h"
@@ -60,6 +61,34 @@ FamilyRates MeasureRates(const FamilyDetection& detection,
                          const FaultFamily& family,
                          double cage_hz,
                          double shaft_hz);
+
+// The rate at which a detected roller spall goes round, f_c, for the report. The spall is
+// load-zone modulated once per cage turn, so its SES carries f_c twice: as the spacing of the
+// +/- m f_c sidebands around k f_b and as the modulation lines m f_c themselves (dsp-notes: "f_c
+// from the FTF line or the sideband spacing"). Least squares over both, each estimate weighted
+// by the inverse of its error in units of one peak's error: a sideband pair's half-distance
+// (hi - lo) / 2 with weight 2, a modulation line f_m / m with weight m^2. Single sidebands
+// against the measured k f_b (error of two peaks and of k f_b) only when neither is present.
+// Modulation lines count when they are a significant local peak (ExplanationOptions::match_bins
+// around m times the running estimate, walking upward), lie below the roller forest (m f_c <
+// f_b / 2 - (sideband_orders + 1/2) f_c) and are resolved from the shaft orders (multiples of
+// shaft_hz / DetectionOptions::shaft_order_divisor) and the mains harmonics: more than one bin
+// away. (The detection excludes a wider guard around those; the measurement only needs the
+// peak to be its own.) hz = 0 when nothing measured it.
+struct CageRateMeasurement {
+  double hz = 0.0;
+  int sideband_pairs = 0;
+  int modulation_lines = 0;
+  int single_sidebands = 0;  // used only when the two above are 0
+  std::string Source() const;  // e.g. "2 sideband pairs + 1 modulation line"
+};
+CageRateMeasurement MeasureRollerCageRate(const NormalizedSpectrum& spectrum,
+                                          const FamilyDetection& roller,
+                                          const FaultFamily& family,
+                                          double cage_hz,
+                                          double shaft_hz,
+                                          const DetectionOptions& options,
+                                          const ExplanationOptions& explanation = {});
 
 // Every line a fault of this family puts in the SES below max_hz, at the given rates:
 //   outer race      k BPFO, k BPFO +/- m f_c
