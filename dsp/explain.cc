@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 
@@ -72,6 +73,17 @@ double RefineRate(const NormalizedSpectrum& s,
   return rate;
 }
 
+// The significant lower and upper sidebands of harmonic line h (null where there is none).
+std::pair<const LineEvidence*, const LineEvidence*> SignificantSidebands(const FamilyDetection& det,
+                                                                         const LineEvidence& h) {
+  const LineEvidence *lo = nullptr, *hi = nullptr;
+  for (const auto& sb : det.lines) {
+    if (!sb.line.is_sideband() || sb.line.harmonic != h.line.harmonic || !sb.significant) continue;
+    (sb.line.sideband < 0 ? lo : hi) = &sb;
+  }
+  return {lo, hi};
+}
+
 }  // namespace
 
 FamilyRates MeasureRates(const FamilyDetection& det,
@@ -96,12 +108,7 @@ FamilyRates MeasureRates(const FamilyDetection& det,
       int count = 0;
       for (const auto& h : det.lines) {
         if (h.line.is_sideband() || h.excluded) continue;
-        const LineEvidence *lo = nullptr, *hi = nullptr;
-        for (const auto& sb : det.lines) {
-          if (!sb.line.is_sideband() || sb.line.harmonic != h.line.harmonic || !sb.significant)
-            continue;
-          (sb.line.sideband < 0 ? lo : hi) = &sb;
-        }
+        const auto [lo, hi] = SignificantSidebands(det, h);
         if (lo && hi) {
           sum += 0.5 * (hi->freq_hz - lo->freq_hz);
           ++count;
@@ -157,12 +164,7 @@ CageRateMeasurement MeasureRollerCageRate(const NormalizedSpectrum& s,
   // (m_hi - m_lo), i.e. weight (m_hi - m_lo)^2 / 2.
   for (const auto& h : det.lines) {
     if (h.line.is_sideband() || h.excluded) continue;
-    const LineEvidence *lo = nullptr, *hi = nullptr;
-    for (const auto& sb : det.lines) {
-      if (!sb.line.is_sideband() || sb.line.harmonic != h.line.harmonic || !sb.significant)
-        continue;
-      (sb.line.sideband < 0 ? lo : hi) = &sb;
-    }
+    const auto [lo, hi] = SignificantSidebands(det, h);
     if (!lo || !hi) continue;
     const double orders = hi->line.sideband - lo->line.sideband;
     add((hi->freq_hz - lo->freq_hz) / orders, 0.5 * orders * orders);

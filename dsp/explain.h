@@ -79,7 +79,7 @@ struct CageRateMeasurement {
   double hz = 0.0;
   int sideband_pairs = 0;
   int modulation_lines = 0;
-  int single_sidebands = 0;  // used only when the two above are 0
+  int single_sidebands = 0;    // used only when the two above are 0
   std::string Source() const;  // e.g. "2 sideband pairs + 1 modulation line"
 };
 CageRateMeasurement MeasureRollerCageRate(const NormalizedSpectrum& spectrum,

@@ -71,8 +71,8 @@ TEST(RollerCageRate, PairsAndModulationLinesAreWeightedByPrecision) {
   // Pair around f_b: half-distance 8.0 (weight 2); modulation lines 8.25 (weight 1) and
   // 16.5 / 2 (weight 4): (2 x 8 + 8.25 + 4 x 8.25) / 7.
   const auto s = Spectrum({8.25, 16.5, kFbHz - 8.0, kFbHz, kFbHz + 8.0});
-  const auto r = Measure(
-      s, Roller({Line(1, 0, kFbHz), Line(1, -1, kFbHz - 8.0), Line(1, +1, kFbHz + 8.0)}));
+  const auto r =
+      Measure(s, Roller({Line(1, 0, kFbHz), Line(1, -1, kFbHz - 8.0), Line(1, +1, kFbHz + 8.0)}));
   EXPECT_NEAR(r.hz, (2 * 8.0 + 8.25 + 4 * 8.25) / 7.0, 1e-12);
   EXPECT_EQ(r.sideband_pairs, 1);
   EXPECT_EQ(r.modulation_lines, 2);
