@@ -49,17 +49,14 @@ void SpreadAtArcPoint(const double* x,
                       double py,
                       double fx_,
                       double fy_,
-                      double* fx,
-                      double* fy) {
+                      solver::ForceLog* forces) {
   const double ex = x[nb] - x[na], ey = y[nb] - y[na], l2 = ex * ex + ey * ey;
   const double cx = x[na] + xi * ex - px, cy = y[na] + xi * ey - py;  // chord point - arc point
   // +-tau (ey, -ex) at na / nb is a couple tau L^2; it cancels the moment error about the arc
   // point, (chord point - arc point) x force.
   const double tau = l2 > 0.0 ? -(cx * fy_ - cy * fx_) / l2 : 0.0;
-  fx[na] += (1.0 - xi) * fx_ + tau * ey;
-  fy[na] += (1.0 - xi) * fy_ - tau * ex;
-  fx[nb] += xi * fx_ - tau * ey;
-  fy[nb] += xi * fy_ + tau * ex;
+  forces->Add(na, (1.0 - xi) * fx_ + tau * ey, (1.0 - xi) * fy_ - tau * ex);
+  forces->Add(nb, xi * fx_ - tau * ey, xi * fy_ + tau * ex);
 }
 
 // The velocity that SpreadAtArcPoint's forces do work with (F . v = sum of node forces . node
@@ -197,7 +194,13 @@ double ContactPair::SegmentStiffness(const Pass& pass,
   return 0.0;
 }
 
-void ContactPair::AddForces(fe::NodalState& state, double /*t*/, double dt) {
+void ContactPair::AddForces(fe::NodalState& state, double t, double dt) {
+  ComputeForces(state, t, dt);
+  ApplyForces(state);
+}
+
+void ContactPair::ComputeForces(const fe::NodalState& state, double /*t*/, double dt) {
+  forces_.Clear();
   if (!initialised_) {
     reference_dt_ = options_.reference_time_step > 0.0 ? options_.reference_time_step : dt;
     for (Pass& p : passes_) {
@@ -213,7 +216,7 @@ void ContactPair::AddForces(fe::NodalState& state, double /*t*/, double dt) {
   for (size_t i = 0; i < passes_.size(); ++i) RunPass(passes_[i], state, dt, i == 0 ? 1.0 : -1.0);
 }
 
-void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double sign) {
+void ContactPair::RunPass(Pass& pass, const fe::NodalState& state, double dt, double sign) {
   const double* x = state.x.data();
   const double* y = state.y.data();
   const ContactSurface& slave = pass.slave;
@@ -322,8 +325,6 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
   if (slave.curved()) ArcForces(pass, state, dt);
 
   // Scatter in fixed slave order: deterministic for any thread count.
-  double* fx = state.fx.data();
-  double* fy = state.fy.data();
   for (int i = 0; i < ns; ++i) {
     const Slot& slot = pass.slots[i];
     friction_dissipation_ += slot.friction_work;
@@ -335,12 +336,9 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
     const int b = master.nodes[master.segment_b[slot.segment]];
     const double gx = slot.fnx + slot.ftx, gy = slot.fny + slot.fty;
     const double wa = 1.0 - slot.xi, wb = slot.xi;
-    fx[s] += gx;
-    fy[s] += gy;
-    fx[a] -= wa * gx;
-    fy[a] -= wa * gy;
-    fx[b] -= wb * gx;
-    fy[b] -= wb * gy;
+    forces_.Add(s, gx, gy);
+    forces_.Add(a, -(wa * gx), -(wa * gy));
+    forces_.Add(b, -(wb * gx), -(wb * gy));
     AddToResultant(slot, sign);
   }
   if (slave.curved()) {
@@ -353,18 +351,14 @@ void ContactPair::RunPass(Pass& pass, fe::NodalState& state, double dt, double s
       // (it turns the roller), by the blend's weights.
       for (const ArcContact& c : pass.arc_blend) {
         const std::array<int, 4> nodes = ArcNodes(pass, c);
-        for (int j = 0; j < 4; ++j) {
-          fx[nodes[j]] -= slot.fn * c.grad[2 * j];
-          fy[nodes[j]] -= slot.fn * c.grad[2 * j + 1];
-        }
-        if (c.third_node >= 0) {
-          fx[c.third_node] -= slot.fn * c.grad[8];
-          fy[c.third_node] -= slot.fn * c.grad[9];
-        }
+        for (int j = 0; j < 4; ++j)
+          forces_.Add(nodes[j], -(slot.fn * c.grad[2 * j]), -(slot.fn * c.grad[2 * j + 1]));
+        if (c.third_node >= 0)
+          forces_.Add(c.third_node, -(slot.fn * c.grad[8]), -(slot.fn * c.grad[9]));
         const double ftx = c.weight * slot.ftx, fty = c.weight * slot.fty;
-        SpreadAtArcPoint(x, y, nodes[0], nodes[1], c.at.xi, c.at.px, c.at.py, ftx, fty, fx, fy);
+        SpreadAtArcPoint(x, y, nodes[0], nodes[1], c.at.xi, c.at.px, c.at.py, ftx, fty, &forces_);
         SpreadAtArcPoint(
-            x, y, nodes[2], nodes[3], c.at.xi_master, c.at.qx, c.at.qy, -ftx, -fty, fx, fy);
+            x, y, nodes[2], nodes[3], c.at.xi_master, c.at.qx, c.at.qy, -ftx, -fty, &forces_);
       }
       AddToResultant(slot, sign);
     }

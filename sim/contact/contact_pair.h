@@ -107,6 +107,11 @@ class ContactPair : public solver::ForceContributor {
               const ContactPairOptions& options);
 
   void AddForces(fe::NodalState& state, double t, double dt) override;
+  // The pair only reads positions, velocities and masses and only adds nodal forces: its forces
+  // are computed into a log (any thread) and applied in order (solver::ForceContributor).
+  bool SplitsForces() const override { return true; }
+  void ComputeForces(const fe::NodalState& state, double t, double dt) override;
+  void ApplyForces(fe::NodalState& state) const override { forces_.ApplyTo(state); }
   double StableTimeStep(const fe::NodalState& state) const override;
   double StoredEnergy() const override { return stored_energy_; }
   double DissipatedEnergy() const override { return friction_dissipation_ + damping_dissipation_; }
@@ -179,7 +184,7 @@ class ContactPair : public solver::ForceContributor {
     double margin = 0.0, capture = 0.0;
   };
 
-  void RunPass(Pass& pass, fe::NodalState& state, double dt, double sign);
+  void RunPass(Pass& pass, const fe::NodalState& state, double dt, double sign);
   void AddToResultant(const Slot& slot, double sign);  // sign -1: second pass (swapped roles)
   // Global node ids of an arc contact's segments: slave a, slave b, master a, master b.
   static std::array<int, 4> ArcNodes(const Pass& pass, const ArcContact& c);
@@ -213,6 +218,7 @@ class ContactPair : public solver::ForceContributor {
   ContactResultant resultant_;
   double reference_dt_ = 0.0;
   double stored_energy_ = 0.0, friction_dissipation_ = 0.0, damping_dissipation_ = 0.0;
+  solver::ForceLog forces_;  // this step's nodal forces (ComputeForces), added by ApplyForces
   int num_rebuilds_ = 0;
   bool initialised_ = false;
   std::vector<double> max_penalty_;  // per pass: largest bulk-modulus penalty of its master

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <sstream>
 
@@ -395,6 +396,32 @@ double ExplicitSolver::UpdateNodes(int c, bool gather, const UpdateConstants& k)
   return work;
 }
 
+void ExplicitSolver::AddContributorForces(double dt) {
+  const int n = static_cast<int>(contributors_.size());
+  int split = 0;
+  while (split < n && contributors_[split]->SplitsForces()) ++split;
+  if (threads_ > 1 && split > 1) {
+    // Dynamic: the pairs' costs differ by orders (far apart: a bounding-box test).
+    std::vector<std::exception_ptr>& errors = contributor_errors_;
+    errors.assign(threads_, nullptr);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads_)
+    for (int i = 0; i < split; ++i) {
+      try {
+        contributors_[i]->ComputeForces(state_, time_, dt);
+      } catch (...) {
+        const int t = omp_get_thread_num();
+        if (!errors[t]) errors[t] = std::current_exception();
+      }
+    }
+    for (const auto& e : errors)
+      if (e) std::rethrow_exception(e);
+  } else {
+    for (int i = 0; i < split; ++i) contributors_[i]->ComputeForces(state_, time_, dt);
+  }
+  for (int i = 0; i < split; ++i) contributors_[i]->ApplyForces(state_);
+  for (int i = split; i < n; ++i) contributors_[i]->AddForces(state_, time_, dt);
+}
+
 void ExplicitSolver::Step() {
   if (!initialized_) Initialize();
   const double h = dt_prev_;
@@ -432,7 +459,7 @@ void ExplicitSolver::Step() {
   if (options_.track_contributor_work) {
     TrackedAddForces(dt);
   } else {
-    for (ForceContributor* c : contributors_) c->AddForces(state_, time_, dt);
+    AddContributorForces(dt);
   }
   if (relative) ReducePartRigidMotion();
   if (step_ == 0) {  // forces at x^0: the contributors' initial stored energy

@@ -19,6 +19,7 @@
 // from a checkpoint is bit-identical to an uninterrupted one.
 #pragma once
 
+#include <exception>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -242,6 +243,7 @@ class ExplicitSolver {
   std::vector<double> inv_mass_;    // 1 / lumped mass (no division in the nodal update)
   std::vector<double> part_rigid_;  // per part: vx, vy, omega, cx, cy
   std::vector<double> chunk_sums_;  // per chunk x per part x 7 sums (scratch)
+  std::vector<std::exception_ptr> contributor_errors_;   // per thread (AddContributorForces)
   std::vector<double> old_vx_, old_vy_, old_x_, old_y_;  // v^(n-1/2), x^n of constrained nodes
 
   bool initialized_ = false;
@@ -255,6 +257,9 @@ class ExplicitSolver {
   // Work ledger (track_contributor_work): forces of the elements [0] and of each contributor
   // [1 + c] at step n (x then y, 2 x nodes each), velocities after the contributors, scratch.
   void TrackedAddForces(double dt);
+  // Every contributor's forces, in contributor order; the leading ones that split their forces
+  // (ForceContributor::SplitsForces: the contact pairs) compute them on all threads first.
+  void AddContributorForces(double dt);
   void BookTrackedWork(double dt_avg);
   std::vector<std::vector<double>> ledger_force_;
   std::vector<double> ledger_work_, ledger_edit_;
