@@ -218,6 +218,10 @@ void ExplicitSolver::Initialize() {
                  ? 1
                  : std::min(omp_get_max_threads(),
                             std::max(1, elements_.num_elements() / kMinElementsPerThread));
+  split_contributors_ = 0;  // contributors are fixed from here on (AddContributor checks)
+  while (split_contributors_ < static_cast<int>(contributors_.size()) &&
+         contributors_[split_contributors_]->SplitsForces())
+    ++split_contributors_;
   mass_damping_ = 4.0 * kPi * options_.mass_damping_ratio * options_.damping_frequency;
   if (options_.stiffness_damping_ratio > 0.0)
     elements_.set_stiffness_damping(options_.stiffness_damping_ratio /
@@ -398,8 +402,7 @@ double ExplicitSolver::UpdateNodes(int c, bool gather, const UpdateConstants& k)
 
 void ExplicitSolver::AddContributorForces(double dt) {
   const int n = static_cast<int>(contributors_.size());
-  int split = 0;
-  while (split < n && contributors_[split]->SplitsForces()) ++split;
+  const int split = split_contributors_;
   if (threads_ > 1 && split > 1) {
     // Dynamic: the pairs' costs differ by orders (far apart: a bounding-box test).
     std::vector<std::exception_ptr>& errors = contributor_errors_;

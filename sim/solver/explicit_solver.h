@@ -243,7 +243,8 @@ class ExplicitSolver {
   std::vector<double> inv_mass_;    // 1 / lumped mass (no division in the nodal update)
   std::vector<double> part_rigid_;  // per part: vx, vy, omega, cx, cy
   std::vector<double> chunk_sums_;  // per chunk x per part x 7 sums (scratch)
-  std::vector<std::exception_ptr> contributor_errors_;   // per thread (AddContributorForces)
+  std::vector<std::exception_ptr> contributor_errors_;  // per thread (AddContributorForces)
+  int split_contributors_ = 0;  // leading contributors that SplitsForces (set in Initialize)
   std::vector<double> old_vx_, old_vy_, old_x_, old_y_;  // v^(n-1/2), x^n of constrained nodes
 
   bool initialized_ = false;

@@ -23,7 +23,6 @@ class ForceLog {
     double* fy = state.fy.data();
     for (const Entry& e : entries_) fx[e.node] += e.fx, fy[e.node] += e.fy;
   }
-  size_t size() const { return entries_.size(); }
 
  private:
   struct Entry {
