@@ -262,13 +262,6 @@ bool FamilyDetection::family_evidence() const {
 
 namespace {
 
-// Distance (Hz) from f to the nearest multiple m * base, m >= 1.
-double DistanceToHarmonic(double f, double base) {
-  if (!(base > 0.0)) return std::numeric_limits<double>::infinity();
-  const double m = std::max(1.0, std::nearbyint(f / base));  // inlined; ties give equal distances
-  return std::abs(f - m * base);
-}
-
 // -ln p of the larger of bins (i, i + 1) (NormalizedSpectrum::PairPValue), capped. With
 // L = -ln q = n log1p(z / n) (BinTail) and p = q (2 - q): -ln p = L - log1p(1 - q), which avoids a
 // log of p near 1 (glibc's slow path there made it the costliest call of the comb search); the

@@ -28,6 +28,9 @@
 // counted nor scored): any machine has them.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -149,6 +152,14 @@ struct FamilyDetection {
   int min_sidebands = 2;
   bool family_evidence() const;  // the harmonic/sideband rule above
 };
+
+// Distance (Hz) from f to the nearest multiple m * base, m >= 1 (infinity for base <= 0). Inline:
+// the comb search calls it in its vectorised exclusion pass.
+inline double DistanceToHarmonic(double f, double base) {
+  if (!(base > 0.0)) return std::numeric_limits<double>::infinity();
+  const double m = std::max(1.0, std::nearbyint(f / base));  // ties give equal distances
+  return std::abs(f - m * base);
+}
 
 FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
                              const FaultFamily& family,

@@ -499,8 +499,7 @@ Diagnosis Diagnose(const Record& record,
     if (!det.detected) continue;
     const FaultFamily& fam = d.families[static_cast<int>(det.component)];
     if (det.component == FaultComponent::kRollingElement && !d.measured_f_b_hz) {
-      const FamilyRates r = MeasureRates(det, fam, kin.cage_hz, shaft_for_rates);
-      d.measured_f_b_hz = r.fundamental_hz;
+      d.measured_f_b_hz = det.fundamental_hz;  // = MeasureRates(...).fundamental_hz
       const CageRateMeasurement fc =
           MeasureRollerCageRate(d.normalized, det, fam, kin.cage_hz, shaft_for_rates, dopt);
       if (fc.hz > 0.0) {

@@ -73,6 +73,12 @@ double RefineRate(const NormalizedSpectrum& s,
   return rate;
 }
 
+// The roller forest's lowest line, BSF - (sideband_orders + 1/2) f_c: below it a line at an
+// integer multiple of f_c is a cage-rate line, above it may be a (k - 1/2) f_b +/- m f_c one.
+double RollerForestFloorHz(double f_b_hz, double f_c_hz, int sideband_orders) {
+  return 0.5 * f_b_hz - (sideband_orders + 0.5) * f_c_hz;
+}
+
 // The significant lower and upper sidebands of harmonic line h (null where there is none).
 std::pair<const LineEvidence*, const LineEvidence*> SignificantSidebands(const FamilyDetection& det,
                                                                          const LineEvidence& h) {
@@ -174,18 +180,14 @@ CageRateMeasurement MeasureRollerCageRate(const NormalizedSpectrum& s,
   const double df = s.resolution_hz;
   const double shaft_base = shaft_hz / std::max(1, options.shaft_order_divisor);
   auto resolved = [&](double f) {
-    auto distance = [](double x, double base) {
-      if (!(base > 0.0)) return std::numeric_limits<double>::infinity();
-      return std::abs(x - std::max(1.0, std::nearbyint(x / base)) * base);
-    };
-    if (distance(f, shaft_base) <= df) return false;
+    if (DistanceToHarmonic(f, shaft_base) <= df) return false;
     for (double mains : options.mains_hz)
-      if (distance(f, mains) <= df) return false;
+      if (DistanceToHarmonic(f, mains) <= df) return false;
     return true;
   };
   double rate = den > 0.0 ? num / den : cage_hz * det.scale;
   const double forest_floor_hz =
-      0.5 * det.fundamental_hz - (explanation.sideband_orders + 0.5) * rate;
+      RollerForestFloorHz(det.fundamental_hz, rate, explanation.sideband_orders);
   for (int m = 1; m * rate < forest_floor_hz; ++m) {
     const int i = PeakNear(s, m * rate, explanation.match_bins);
     if (i < 0 || s.PairPValue(s.z[i]) > options.line_p_value) continue;
@@ -305,7 +307,7 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
   double forest_floor_hz = std::numeric_limits<double>::infinity();
   for (const FaultFamily& f : families)
     if (f.component == FaultComponent::kRollingElement && cage_hz > 0.0)
-      forest_floor_hz = 0.5 * f.fundamental_hz - (explanation.sideband_orders + 0.5) * cage_hz;
+      forest_floor_hz = RollerForestFloorHz(f.fundamental_hz, cage_hz, explanation.sideband_orders);
   double cage_measured_hz = 0.0;
   for (size_t i = 0; i < families.size(); ++i) {
     if (families[i].component != FaultComponent::kCage || !detections[i].detected) continue;
