@@ -317,22 +317,35 @@ HybridRollers::HybridRollers(const Scene& scene,
 }
 
 int HybridRollers::Kernel(double th, int* idx, double* w, double* dw) const {
-  // w_k = a_k / S with a_k = 1 - s_k^2, s_k = R0 (theta_k - th) / L, S = sum a_k; so
-  // dw_k/dth = (a_k' - w_k S') / S with a_k' = 2 s_k R0 / L.
+  // w_k = a_k / S with a_k = B3(u_k), u_k = 2 R0 (theta_k - th) / L (the cubic B-spline, support
+  // |u| < 2, i.e. half-width L), S = sum a_k; so dw_k/dth = (a_k' - w_k S') / S with
+  // a_k' = B3'(u_k) (-2 R0 / L). B3 is C2: the weights change smoothly as a contact crosses a node
+  // (a parabola 1 - s^2 has a kink at its ends; it made the sensor 3x louder, docs/BEARING_MODEL.md).
   const int n = static_cast<int>(ring_nodes_.size());
   const double spacing = outer_radius_ * ring_dtheta_;
   const int m = static_cast<int>(std::ceil(spread_ / spacing));
   const long k0 = std::lround((th - ring_theta0_) / ring_dtheta_);
+  const double du_dth = -2.0 * outer_radius_ / spread_;
   int count = 0;
   double sum = 0.0, dsum = 0.0;
   for (long k = k0 - m; k <= k0 + m; ++k) {
-    const double s = outer_radius_ * (ring_theta0_ + k * ring_dtheta_ - th) / spread_;
-    const double wk = 1.0 - s * s;
-    if (wk <= 0.0) continue;
+    const double u = 2.0 * outer_radius_ * (ring_theta0_ + k * ring_dtheta_ - th) / spread_;
+    const double au = std::abs(u), sign = u > 0.0 ? 1.0 : -1.0;
+    double a, da;
+    if (au < 1.0) {
+      a = 2.0 / 3.0 - u * u + 0.5 * au * au * au;
+      da = -2.0 * u + 1.5 * u * au;
+    } else if (au < 2.0) {
+      a = (2.0 - au) * (2.0 - au) * (2.0 - au) / 6.0;
+      da = -0.5 * (2.0 - au) * (2.0 - au) * sign;
+    } else {
+      continue;
+    }
+    if (a <= 0.0) continue;
     idx[count] = static_cast<int>(((k % n) + n) % n);
-    w[count] = wk;
-    if (dw) dw[count] = 2.0 * s * outer_radius_ / spread_, dsum += dw[count];
-    sum += wk;
+    w[count] = a;
+    if (dw) dw[count] = da * du_dth, dsum += dw[count];
+    sum += a;
     ++count;
   }
   for (int i = 0; i < count; ++i) {

@@ -18,7 +18,7 @@
 //    (the spall faces the race), the roller rests on the spall's two rim corners, each checked
 //    against the race (the race curvature included): that is the force drop of bearing-notes §4.
 //    The race surface radius at a point is the reference raceway radius plus the radial nodal
-//    displacement averaged with a parabolic kernel of half-width L (arc length) around the
+//    displacement averaged with a cubic B-spline kernel of half-width L (arc length) around the
 //    point; the contact force goes to the same nodes with the same weights (work conjugate).
 //    Spreading over L (>= 1 mm, >= 2 node spacings) makes the force independent of where the
 //    contact sits between nodes; the ring's elastic response to a load spread over 2L is its
