@@ -320,7 +320,8 @@ int HybridRollers::Kernel(double th, int* idx, double* w, double* dw) const {
   // w_k = a_k / S with a_k = B3(u_k), u_k = 2 R0 (theta_k - th) / L (the cubic B-spline, support
   // |u| < 2, i.e. half-width L), S = sum a_k; so dw_k/dth = (a_k' - w_k S') / S with
   // a_k' = B3'(u_k) (-2 R0 / L). B3 is C2: the weights change smoothly as a contact crosses a node
-  // (a parabola 1 - s^2 has a kink at its ends; it made the sensor 3x louder, docs/BEARING_MODEL.md).
+  // (a parabola 1 - s^2 has a kink at its ends; it made the sensor 3x louder,
+  // docs/BEARING_MODEL.md).
   const int n = static_cast<int>(ring_nodes_.size());
   const double spacing = outer_radius_ * ring_dtheta_;
   const int m = static_cast<int>(std::ceil(spread_ / spacing));

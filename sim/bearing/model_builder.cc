@@ -139,7 +139,7 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
       return std::make_unique<contact::ContactPair>(
           contact::MakeContactPair(mesh, surf, master, bulk, t, o));
     };
-    if (scene_.model.race_contact == "curved") {
+    if (scene_.model.race_contact == "curved" || scene_.model.race_contact == "smooth") {
       // Rim segments on the roller's circle and the raceways' segments become arcs; the spall's
       // walls and bottom stay straight, so its corners touch as vertices.
       const double cx = mesh_.pitch_radius_m * std::cos(mesh_.roller_angles_rad[j]);
@@ -151,8 +151,10 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
         contact::MarkCircularArcs(
             &s, mesh.x.data(), mesh.y.data(), cx, cy, mesh_.roller_radius_m, tol);
         contact::MarkCircularArcs(&m, mesh.x.data(), mesh.y.data(), 0, 0, race_radius, tol);
+        contact::ContactPairOptions o = race;
+        o.smooth_surfaces = scene_.model.race_contact == "smooth";
         return std::make_unique<contact::ContactPair>(
-            surf + "/" + master, std::move(s), std::move(m), race);
+            surf + "/" + master, std::move(s), std::move(m), o);
       };
       outer_pairs_.push_back(make_curved("outer_ring.raceway", mesh_.outer_raceway_radius_m));
       inner_pairs_.push_back(make_curved("inner_ring.raceway", mesh_.inner_raceway_radius_m));
@@ -300,6 +302,7 @@ std::vector<std::string> BearingModel::Warnings() const {
   }
   if (facets == 0) return out;
   const double rim_spacing = 2.0 * std::numbers::pi * mesh_.roller_radius_m / facets;
+  if (scene_.model.race_contact == "smooth") return out;  // no blend to kink (spline_surface.h)
   if (scene_.model.race_contact != "faceted") {
     // The curved race contact rolls the meshed rims as circles (measured at mu 0.01 on 0.5 and
     // 1.0 mm meshes), but on finer rims dented loaded nodes kink the fixed-curvature arcs and the
@@ -312,7 +315,7 @@ std::vector<std::string> BearingModel::Warnings() const {
          << " mm) has created energy where a loaded rim node dents "
          << "(docs/CONTACT.md, open defect: 16.9 % at 24.5 ms on the 0.25 mm mesh at 6000 rpm); "
          << "the run stops if the balance passes solver.max_energy_error_percent; "
-         << "model.race_contact = \"faceted\" balances on this mesh";
+         << "model.race_contact = \"smooth\" (the default) balances on this mesh";
       out.push_back(os.str());
     }
     return out;
@@ -329,7 +332,7 @@ std::vector<std::string> BearingModel::Warnings() const {
   os << "the FE rollers' rims have " << facets << " facets: at friction mu = " << mu
      << " they may stand on their facets and slide instead of rolling (mu x facets = "
      << mu * facets << " < " << kRollingMinMuFacets
-     << "; docs/BEARING_MODEL.md); use model.race_contact = \"curved\" or refine "
+     << "; docs/BEARING_MODEL.md); use model.race_contact = \"smooth\" or refine "
      << "mesh.contact_size_mm to <= " << needed_spacing * 1e3;
   out.push_back(os.str());
   return out;

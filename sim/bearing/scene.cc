@@ -481,10 +481,12 @@ Scene ParseScene(const std::string& toml_text,
     scene.model.adapter = s.String("adapter", "elastic");
     if (scene.model.adapter != "elastic" && scene.model.adapter != "rigid")
       s.Fail("adapter", "expected \"elastic\" or \"rigid\", got \"" + scene.model.adapter + "\"");
-    scene.model.race_contact = s.String("race_contact", "curved");
-    if (scene.model.race_contact != "faceted" && scene.model.race_contact != "curved")
+    scene.model.race_contact = s.String("race_contact", "smooth");
+    if (scene.model.race_contact != "faceted" && scene.model.race_contact != "curved" &&
+        scene.model.race_contact != "smooth")
       s.Fail("race_contact",
-             "expected \"faceted\" or \"curved\", got \"" + scene.model.race_contact + "\"");
+             "expected \"faceted\", \"curved\" or \"smooth\", got \"" + scene.model.race_contact +
+                 "\"");
     // The FE section is 2-D: a spall runs through its whole thickness.
     for (std::size_t i = 0; scene.model.fidelity == "fe" && i < scene.defects.size(); ++i)
       if (scene.defects[i].length_m < scene.geometry.thickness_m * (1 - 1e-12))

@@ -117,10 +117,11 @@ struct SceneModel {
   // fixed, so the outer ring is held rigidly over the seat (Table 1 gives the adapter no
   // material; docs/BEARING_MODEL.md, "Harris-Jones with the real housing").
   std::string adapter = "elastic";
-  // Roller-race contact of the full FE ("fe" only): "faceted" (node to segment on the meshes'
-  // chords) or "curved" (roller rims and raceways as circular arcs, docs/CONTACT.md "Curved
-  // surfaces": no facet bump as a roller turns).
-  std::string race_contact = "curved";
+  // Roller-race contact of the full FE ("fe" only): "smooth" (roller rims and raceways as cubic
+  // B-splines through their nodes, docs/CONTACT.md "Smooth surfaces": C2 contact forces, energy
+  // balanced on the 0.25 mm mesh), "curved" (circular arcs, "Curved surfaces": no facet bump as a
+  // roller turns; creates energy on rims finer than 0.35 mm) or "faceted" (node to chord).
+  std::string race_contact = "smooth";
 };
 
 struct SceneSolver {

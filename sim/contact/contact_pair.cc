@@ -162,6 +162,22 @@ ContactPair::ContactPair(std::string name,
         p.master_arc_stamp.assign(p.master.num_segments(), -1);
       }
     }
+    if (options_.smooth_surfaces) {
+      if (!p.slave.curved() || !p.master.curved())
+        throw InputError("contact pair '" + name_ +
+                         "': smooth_surfaces needs both surfaces curved (MarkCircularArcs)");
+      // Topology now; the offsets need positions and are measured at the first step.
+      p.slave_spline = MakeSplineSurface(p.slave, nullptr, nullptr);
+      p.master_spline = MakeSplineSurface(p.master, nullptr, nullptr);
+      p.spline_interior.assign(n, 0);
+      for (int i = 0; i < n; ++i) {
+        const SplineSurface& sp = p.slave_spline;
+        const int a = sp.previous[i], b = sp.next[i];
+        p.spline_interior[i] = a >= 0 && b >= 0 && sp.previous[a] >= 0 && sp.valid_span[i] &&
+                               sp.valid_span[a] && sp.valid_span[sp.previous[a]] &&
+                               sp.valid_span[b];
+      }
+    }
     p.tangential_force.assign(n, 0.0);
     p.tangential_stiffness.assign(n, 0.0);
     p.gap.assign(n, kInf);
@@ -211,6 +227,13 @@ void ContactPair::ComputeForces(const fe::NodalState& state, double /*t*/, doubl
     }
     initialised_ = true;
   }
+  if (options_.smooth_surfaces && !spline_offsets_known_) {
+    for (Pass& p : passes_) {
+      p.slave_spline = MakeSplineSurface(p.slave, state.x.data(), state.y.data());
+      p.master_spline = MakeSplineSurface(p.master, state.x.data(), state.y.data());
+    }
+    spline_offsets_known_ = true;
+  }
   resultant_ = ContactResultant{};
   stored_energy_ = 0.0;
   for (size_t i = 0; i < passes_.size(); ++i) RunPass(passes_[i], state, dt, i == 0 ? 1.0 : -1.0);
@@ -257,6 +280,7 @@ void ContactPair::RunPass(Pass& pass, const fe::NodalState& state, double dt, do
     }
     friction_dissipation_ += ReleaseSpring(&pass.arc_spring, pass.arc_spring_stiffness);
     pass.arc_blend.clear();
+    pass.spline_found = pass.spline_active = false;
     return;
   }
   if (!pass.grid.built() || moved2 > reach * reach) {
@@ -267,7 +291,9 @@ void ContactPair::RunPass(Pass& pass, const fe::NodalState& state, double dt, do
     }
     ++num_rebuilds_;
   }
-  if (slave.curved()) {
+  if (options_.smooth_surfaces) {
+    FindSplineContact(pass, x, y);
+  } else if (slave.curved()) {
     FindArcContacts(pass, x, y);
     if (!pass.arc_blend.empty()) BlendArcContacts(pass, x, y);
   }
@@ -322,7 +348,10 @@ void ContactPair::RunPass(Pass& pass, const fe::NodalState& state, double dt, do
   } else {
     for (int i = 0; i < ns; ++i) slave_node(i);
   }
-  if (slave.curved()) ArcForces(pass, state, dt);
+  if (options_.smooth_surfaces)
+    SplineForces(pass, state, dt);
+  else if (slave.curved())
+    ArcForces(pass, state, dt);
 
   // Scatter in fixed slave order: deterministic for any thread count.
   for (int i = 0; i < ns; ++i) {
@@ -341,7 +370,23 @@ void ContactPair::RunPass(Pass& pass, const fe::NodalState& state, double dt, do
     forces_.Add(b, -(wb * gx), -(wb * gy));
     AddToResultant(slot, sign);
   }
-  if (slave.curved()) {
+  if (options_.smooth_surfaces) {
+    const Slot& slot = pass.arc_slot;
+    friction_dissipation_ += slot.friction_work;
+    if (slot.segment >= 0) {
+      damping_dissipation_ += slot.damping_work;
+      stored_energy_ += slot.stored;
+      // f n on the slave's control points by their B-spline weights, -f n on the master's: the
+      // exact -grad of the penalty (spline_surface.h); friction the same way at the curve points.
+      const double gx = slot.fnx + slot.ftx, gy = slot.fny + slot.fty;
+      for (int j = 0; j < 4; ++j) {
+        const double ws = pass.spline_slave_weights[j], wm = pass.spline_master_weights[j];
+        forces_.Add(pass.spline_slave_nodes[j], ws * gx, ws * gy);
+        forces_.Add(pass.spline_master_nodes[j], -(wm * gx), -(wm * gy));
+      }
+      AddToResultant(slot, sign);
+    }
+  } else if (slave.curved()) {
     const Slot& slot = pass.arc_slot;
     friction_dissipation_ += slot.friction_work;
     if (slot.segment >= 0) {
@@ -800,6 +845,107 @@ void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) 
           ReleaseSpring(&pass.tangential_force[i], pass.tangential_stiffness[i]);
 }
 
+void ContactPair::FindSplineContact(Pass& pass, const double* x, const double* y) {
+  const ContactSurface& slave = pass.slave;
+  const ContactSurface& master = pass.master;
+  const SplineSurface& ss = pass.slave_spline;
+  const SplineSurface& ms = pass.master_spline;
+  pass.node_owned = pass.spline_interior;
+  pass.spline_active = false;
+  // Newton from last step's point; if that fails (first contact, a spall passing), from the
+  // slave control node nearest the master.
+  SplineContactPoint point = pass.spline_point;
+  bool found = pass.spline_found && SplineClosestPoints(slave, ss, master, ms, x, y, &point);
+  if (!found) {
+    int best = -1, best_segment = -1;
+    double best_gap = kInf, best_xi = 0.0;
+    for (int i = 0; i < slave.num_nodes(); ++i) {
+      if (!ss.valid_span[i] && !(ss.previous[i] >= 0 && ss.valid_span[ss.previous[i]])) continue;
+      const int g = slave.nodes[i];
+      const std::span<const int> candidates = pass.grid.Candidates(x[g], y[g]);
+      if (candidates.empty()) continue;
+      const Projection proj = ProjectOntoSurface(master, x, y, x[g], y[g], candidates);
+      if (proj.segment < 0 || !(proj.gap < best_gap)) continue;
+      best = i, best_gap = proj.gap, best_segment = proj.segment, best_xi = proj.xi;
+    }
+    if (best >= 0) {
+      point = SplineContactPoint{};
+      point.slave_span = ss.valid_span[best] ? best : ss.previous[best];
+      point.t = ss.valid_span[best] ? 0.0 : 1.0;
+      point.master_span = master.segment_a[best_segment];
+      point.s = std::clamp(best_xi, 0.0, 1.0);
+      found = SplineClosestPoints(slave, ss, master, ms, x, y, &point);
+    }
+  }
+  pass.spline_found = found;
+  if (!found) return;
+  pass.spline_point = point;
+  if (!(point.gap < 0.0) || -point.gap > pass.capture) return;
+  pass.spline_active = true;
+  const SplineBasis bs(point.t), bm(point.s);
+  const std::array<int, 4> cs = ss.Controls(point.slave_span), cm = ms.Controls(point.master_span);
+  for (int j = 0; j < 4; ++j) {
+    pass.node_owned[cs[j]] = 1;  // the spline contact stands for them
+    pass.spline_slave_nodes[j] = slave.nodes[cs[j]];
+    pass.spline_master_nodes[j] = master.nodes[cm[j]];
+    pass.spline_slave_weights[j] = bs.b[j];
+    pass.spline_master_weights[j] = bm.b[j];
+  }
+}
+
+void ContactPair::SplineForces(Pass& pass, const fe::NodalState& state, double dt) {
+  const ContactSurface& slave = pass.slave;
+  const double* vx = state.vx.data();
+  const double* vy = state.vy.data();
+  const double* mass = state.mass.data();
+  Slot& slot = pass.arc_slot;
+  slot = Slot{};
+  if (pass.spline_active) {
+    const std::array<int, 4> cs = pass.slave_spline.Controls(pass.spline_point.slave_span);
+    if (pass.arc_spring == 0.0) {
+      // Hand-over: the contact walked here from a node.
+      for (int local : cs)
+        if (pass.arc_spring == 0.0 && pass.slots[local].segment < 0 &&
+            pass.tangential_force[local] != 0.0)
+          std::swap(pass.arc_spring, pass.tangential_force[local]);
+    }
+    // Stiffness of the master segment under the point; mass and velocities conjugate to the
+    // weights the forces are spread with.
+    double inverse_mass = 0.0, rvx = 0.0, rvy = 0.0;
+    double slave_mass = kInf, master_mass = kInf;
+    for (int j = 0; j < 4; ++j) {
+      const int a = pass.spline_slave_nodes[j], b = pass.spline_master_nodes[j];
+      const double ws = pass.spline_slave_weights[j], wm = pass.spline_master_weights[j];
+      inverse_mass += ws * ws * InverseMass(mass[a]) + wm * wm * InverseMass(mass[b]);
+      rvx += ws * vx[a] - wm * vx[b];
+      rvy += ws * vy[a] - wm * vy[b];
+      slave_mass = std::min(slave_mass, mass[a]);
+      master_mass = std::min(master_mass, mass[b]);
+    }
+    const SplineContactPoint& p = pass.spline_point;
+    const int segment = pass.master.segment_after[p.master_span];
+    ContactLaw(SegmentStiffness(pass, segment, slave_mass, master_mass),
+               -p.gap,
+               p.nx,
+               p.ny,
+               rvx,
+               rvy,
+               inverse_mass,
+               dt,
+               &pass.arc_spring,
+               &pass.arc_spring_stiffness,
+               &slot);
+    slot.segment = segment;
+    slot.xi = p.s;
+  } else {
+    slot.friction_work += ReleaseSpring(&pass.arc_spring, pass.arc_spring_stiffness);
+  }
+  for (int i = 0; i < slave.num_nodes(); ++i)
+    if (pass.slots[i].segment < 0)
+      pass.slots[i].friction_work +=
+          ReleaseSpring(&pass.tangential_force[i], pass.tangential_stiffness[i]);
+}
+
 double ContactPair::StableTimeStep(const fe::NodalState& state) const {
   const double zeta = options_.normal_damping_ratio;
   const double damping_factor = std::sqrt(1.0 + zeta * zeta) - zeta;
@@ -871,6 +1017,12 @@ std::string ContactPair::SaveState() const {
       Put(&out, p.arc_spring);
       Put(&out, p.arc_spring_stiffness);
     }
+    if (options_.smooth_surfaces) {  // measured offsets and the Newton start
+      Put(&out, p.slave_spline.offset);
+      Put(&out, p.master_spline.offset);
+      Put(&out, p.spline_found);
+      Put(&out, p.spline_point);
+    }
   }
   return out;
 }
@@ -898,6 +1050,13 @@ void ContactPair::LoadState(const std::string& bytes) {
     if (p.slave.curved()) {
       p.arc_spring = Get<double>(bytes, &pos, name_);
       p.arc_spring_stiffness = Get<double>(bytes, &pos, name_);
+    }
+    if (options_.smooth_surfaces) {
+      p.slave_spline.offset = Get<double>(bytes, &pos, name_);
+      p.master_spline.offset = Get<double>(bytes, &pos, name_);
+      p.spline_found = Get<bool>(bytes, &pos, name_);
+      p.spline_point = Get<SplineContactPoint>(bytes, &pos, name_);
+      spline_offsets_known_ = true;
     }
     p.grid = SegmentGrid{};  // rebuilt at the next step
   }

@@ -44,6 +44,14 @@
 // closest point in span (a spall facing the master). The spring moves to or from a node's when
 // contact passes between nodes and arcs.
 //
+// Smooth surfaces (options.smooth_surfaces, spline_surface.h): instead of the arcs' blend, both
+// surfaces are cubic B-splines of their smooth nodes and touch at one point per pass, found by
+// Newton from the last step's (the slave node nearest the master on the first step or after a
+// miss). Its force goes to the four control points on each side with the B-spline weights, which
+// are C2 in the contact's position (the arcs' linear weights kink at every node), and is the exact
+// -grad of k g^2 / 2. Nodes whose every span is smooth take no node contact; near a kink (a
+// spall's corners) they do, unless the spline contact's current span uses them.
+//
 // Cost: surfaces far apart are rejected by bounding boxes (two min/max passes over the surface
 // nodes, no search). The grid is rebuilt only when a master node has moved margin/2. All buffers
 // are sized at construction or at the first step: nothing is allocated in the time loop unless a
@@ -59,6 +67,7 @@
 #include "sim/contact/friction.h"
 #include "sim/contact/penalty.h"
 #include "sim/contact/segment_grid.h"
+#include "sim/contact/spline_surface.h"
 #include "sim/contact/surface.h"
 #include "sim/solver/force_contributor.h"
 
@@ -79,6 +88,10 @@ struct ContactPairOptions {
   // Search. 0 = automatic: margin = mean master segment length, capture depth = margin / 2.
   double search_margin = 0.0;  // m, grid growth; rebuild after margin/2 of master motion
   double capture_depth = 0.0;  // m, deepest penetration still treated as contact (<= margin / 2)
+
+  // Both surfaces curved: touch as cubic B-splines of their smooth nodes (spline_surface.h)
+  // instead of the arcs' blend; nodes near a kink (a spall's corners) keep node contact.
+  bool smooth_surfaces = false;
 
   double stable_step_safety = 0.9;  // factor on 2 / omega in StableTimeStep()
   int parallel_min_nodes = 2048;    // OpenMP only for passes with at least this many slave nodes
@@ -176,6 +189,14 @@ class ContactPair : public solver::ForceContributor {
     std::vector<long> master_arc_stamp;    // the step (arc_stamp) each was computed at
     long arc_stamp = 0;
     SegmentGrid grid;
+    // smooth_surfaces: both surfaces' B-spline views, this step's contact point (the last one
+    // found is the next step's Newton start), its control points and weights while in contact.
+    SplineSurface slave_spline, master_spline;
+    SplineContactPoint spline_point;
+    bool spline_found = false, spline_active = false;
+    std::array<int, 4> spline_slave_nodes{}, spline_master_nodes{};  // global ids
+    std::array<double, 4> spline_slave_weights{}, spline_master_weights{};
+    std::vector<char> spline_interior;     // per slave node: every span it controls is valid
     std::vector<double> x_built, y_built;  // master node positions at the last grid build
     std::vector<double> tangential_force;  // per slave node, along the master tangent
     std::vector<double> tangential_stiffness;
@@ -207,6 +228,10 @@ class ContactPair : public solver::ForceContributor {
   // Weights of the blend's points and the gradient of the blended penetration (ArcContact::grad).
   void BlendArcContacts(Pass& pass, const double* x, const double* y) const;
   void ArcForces(Pass& pass, const fe::NodalState& state, double dt);
+  // smooth_surfaces: the B-spline contact point (sets node_owned) before the node loop, its
+  // contact law after it.
+  void FindSplineContact(Pass& pass, const double* x, const double* y);
+  void SplineForces(Pass& pass, const fe::NodalState& state, double dt);
   double SegmentStiffness(const Pass& pass,
                           int segment,
                           double slave_mass,
@@ -221,7 +246,8 @@ class ContactPair : public solver::ForceContributor {
   solver::ForceLog forces_;  // this step's nodal forces (ComputeForces), added by ApplyForces
   int num_rebuilds_ = 0;
   bool initialised_ = false;
-  std::vector<double> max_penalty_;  // per pass: largest bulk-modulus penalty of its master
+  bool spline_offsets_known_ = false;  // smooth_surfaces: offsets measured (first step) or loaded
+  std::vector<double> max_penalty_;    // per pass: largest bulk-modulus penalty of its master
   // StableTimeStep's spring/mass bound for the nodal state it last scanned (masses are constant
   // during a run).
   mutable const fe::NodalState* min_inverse_mass_state_ = nullptr;

@@ -370,7 +370,7 @@ TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARa
   EXPECT_GT(healthy_checks, 100);
 }
 
-// The same criterion on the full FE (every roller meshed, curved race contact; 1 mm, 0.5 mm along
+// The same criterion on the full FE (every roller meshed, smooth race contact; 1 mm, 0.5 mm along
 // the contacts: the spall needs 1.5 elements across). The FE roller's spin angle is not tracked,
 // so a drop is tied to the spall by its timing instead: the defective roller's race force drops
 // to (near) zero inside the load zone once every half turn relative to the cage,

@@ -205,12 +205,15 @@ TEST(Scene, LoadRampDefaultsToTheSpeedRamp) {
                      "bad.toml:2: operation.load_ramp_s: must be >= 0 (got -1)");
 }
 
-TEST(Scene, RaceContactIsFacetedOrCurved) {
-  EXPECT_EQ(ParseScene("", "default.toml").model.race_contact, "curved");
+TEST(Scene, RaceContactIsFacetedCurvedOrSmooth) {
+  EXPECT_EQ(ParseScene("", "default.toml").model.race_contact, "smooth");
   EXPECT_EQ(ParseScene("[model]\nrace_contact = \"faceted\"\n", "f.toml").model.race_contact,
             "faceted");
   ExpectOneLineError(ErrorOf("[model]\nrace_contact = \"round\"\n"),
-                     "model.race_contact: expected \"faceted\" or \"curved\", got \"round\"");
+                     "model.race_contact: expected \"faceted\", \"curved\" or \"smooth\", got "
+                     "\"round\"");
+  EXPECT_EQ(ParseScene("[model]\nrace_contact = \"smooth\"\n", "s.toml").model.race_contact,
+            "smooth");
 }
 
 TEST(Scene, MissingFileIsInputError) {
