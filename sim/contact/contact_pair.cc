@@ -839,7 +839,11 @@ void ContactPair::ArcForces(Pass& pass, const fe::NodalState& state, double dt) 
     // Out of contact: the spring's energy is dissipated, as for a node.
     slot.friction_work += ReleaseSpring(&pass.arc_spring, pass.arc_spring_stiffness);
   }
-  for (int i = 0; i < slave.num_nodes(); ++i)
+  ReleaseIdleNodeSprings(pass);
+}
+
+void ContactPair::ReleaseIdleNodeSprings(Pass& pass) {
+  for (int i = 0; i < pass.slave.num_nodes(); ++i)
     if (pass.slots[i].segment < 0)
       pass.slots[i].friction_work +=
           ReleaseSpring(&pass.tangential_force[i], pass.tangential_stiffness[i]);
@@ -894,7 +898,6 @@ void ContactPair::FindSplineContact(Pass& pass, const double* x, const double* y
 }
 
 void ContactPair::SplineForces(Pass& pass, const fe::NodalState& state, double dt) {
-  const ContactSurface& slave = pass.slave;
   const double* vx = state.vx.data();
   const double* vy = state.vy.data();
   const double* mass = state.mass.data();
@@ -940,10 +943,7 @@ void ContactPair::SplineForces(Pass& pass, const fe::NodalState& state, double d
   } else {
     slot.friction_work += ReleaseSpring(&pass.arc_spring, pass.arc_spring_stiffness);
   }
-  for (int i = 0; i < slave.num_nodes(); ++i)
-    if (pass.slots[i].segment < 0)
-      pass.slots[i].friction_work +=
-          ReleaseSpring(&pass.tangential_force[i], pass.tangential_stiffness[i]);
+  ReleaseIdleNodeSprings(pass);
 }
 
 double ContactPair::StableTimeStep(const fe::NodalState& state) const {

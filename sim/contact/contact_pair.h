@@ -232,6 +232,9 @@ class ContactPair : public solver::ForceContributor {
   // contact law after it.
   void FindSplineContact(Pass& pass, const double* x, const double* y);
   void SplineForces(Pass& pass, const fe::NodalState& state, double dt);
+  // After ArcForces / SplineForces: the springs of slave nodes not in node contact this step
+  // (the point contact may have taken them over) give up their energy.
+  static void ReleaseIdleNodeSprings(Pass& pass);
   double SegmentStiffness(const Pass& pass,
                           int segment,
                           double slave_mass,

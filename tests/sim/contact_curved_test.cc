@@ -12,90 +12,18 @@
 #include "sim/contact/contact_pair.h"
 #include "sim/contact/surface.h"
 #include "sim/fe/nodal_state.h"
+#include "tests/sim/roller_in_bore.h"
 
 namespace spallkit::contact {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kR = 3.25e-3, kBore = 22.5e-3, kK = 1e9;  // roller, bore radii (m); N/m
-constexpr int kRim = 40, kRace = 283;                      // the 0.5 mm bearing mesh's counts
-
-// Nodes 0..kRim-1: the roller (CCW, body on the left), then the bore (CW, ring body on the left).
-struct Scene {
-  fe::NodalState state;
-  ContactSurface roller, bore;
-};
-
-Scene MakeScene(bool curved) {
-  Scene s;
-  s.state.Resize(kRim + kRace);
-  std::vector<int> rn, bn;
-  for (int i = 0; i < kRim; ++i) rn.push_back(i);
-  for (int i = 0; i < kRace; ++i) {
-    const double a = -2 * kPi * i / kRace;
-    s.state.x[kRim + i] = kBore * std::cos(a);
-    s.state.y[kRim + i] = kBore * std::sin(a);
-    bn.push_back(kRim + i);
-  }
-  for (int i = 0; i < kRim + kRace; ++i) s.state.mass[i] = 1e-5;
-  s.roller = MakeSurfaceFromChain("roller", rn, true);
-  s.bore = MakeSurfaceFromChain("bore", bn, true);
-  if (curved) {
-    // Roller curvature is marked on its reference pose, the circle at the origin.
-    std::vector<double> x(kRim + kRace), y(kRim + kRace);
-    for (int i = 0; i < kRim; ++i) {
-      x[i] = kR * std::cos(2 * kPi * i / kRim);
-      y[i] = kR * std::sin(2 * kPi * i / kRim);
-    }
-    EXPECT_EQ(MarkCircularArcs(&s.roller, x.data(), y.data(), 0, 0, kR, 1e-12), kRim);
-    EXPECT_EQ(MarkCircularArcs(&s.bore, s.state.x.data(), s.state.y.data(), 0, 0, kBore, 1e-12),
-              kRace);
-    EXPECT_GT(s.roller.segment_curvature[0], 0);  // convex
-    EXPECT_LT(s.bore.segment_curvature[0], 0);    // concave
-  }
-  return s;
-}
-
-// Roller at centre distance d along direction theta, rotated by phi.
-void PlaceRoller(Scene* s, double d, double theta, double phi) {
-  for (int i = 0; i < kRim; ++i) {
-    const double a = 2 * kPi * i / kRim + phi;
-    s->state.x[i] = d * std::cos(theta) + kR * std::cos(a);
-    s->state.y[i] = d * std::sin(theta) + kR * std::sin(a);
-  }
-}
-
-ContactPairOptions Options() {
-  ContactPairOptions o;
-  o.penalty_law = PenaltyLaw::kConstant;
-  o.constant_stiffness = kK;
-  return o;
-}
-
-struct Force {
-  double fx = 0, fy = 0, moment = 0, stored = 0;  // on the roller; moment about its centre
-};
-
-Force Evaluate(ContactPair& pair, Scene* s, double d, double theta) {
-  std::fill(s->state.fx.begin(), s->state.fx.end(), 0.0);
-  std::fill(s->state.fy.begin(), s->state.fy.end(), 0.0);
-  pair.AddForces(s->state, 0.0, 1e-9);
-  Force f;
-  const double cx = d * std::cos(theta), cy = d * std::sin(theta);
-  for (int i = 0; i < kRim; ++i) {
-    f.fx += s->state.fx[i];
-    f.fy += s->state.fy[i];
-    f.moment += (s->state.x[i] - cx) * s->state.fy[i] - (s->state.y[i] - cy) * s->state.fx[i];
-  }
-  f.stored = pair.StoredEnergy();
-  return f;
-}
+using namespace roller_in_bore;  // Scene, MakeScene, PlaceRoller, Evaluate, constants
 
 TEST(CurvedContactTest, PolygonRollerTouchesABoreAsTheCircleDoesAtEveryRotation) {
   const double overlap = 10e-6, d = kBore - kR + overlap, theta = -1.2;
   for (bool curved : {false, true}) {
     Scene s = MakeScene(curved);
-    ContactPair pair("roller/bore", s.roller, s.bore, Options());
+    ContactPair pair("roller/bore", s.roller, s.bore, ConstantPenalty());
     double fmin = 1e300, fmax = 0;
     for (int k = 0; k < 16; ++k) {
       const double phi = 2 * kPi / kRim * k / 16.0;
@@ -148,86 +76,28 @@ TEST(CurvedContactTest, ContactThroughARimNodeIsStillOneArcContact) {
   ContactSurface bore_surface = MakeSurfaceFromChain("bore", bn, true);
   ASSERT_EQ(MarkCircularArcs(&roller, state.x.data(), state.y.data(), 0, cy, r, 1e-12), n);
   ASSERT_EQ(MarkCircularArcs(&bore_surface, state.x.data(), state.y.data(), 0, 0, bore, 1e-12), m);
-  ContactPair pair("roller/bore", roller, bore_surface, Options());
+  ContactPair pair("roller/bore", roller, bore_surface, ConstantPenalty());
   pair.AddForces(state, 0.0, 1e-9);
   EXPECT_EQ(pair.Resultant().active_nodes, 1);
   EXPECT_NEAR(pair.Resultant().NormalMagnitude(), kK * overlap, 1e-6 * kK * overlap);
 }
 
 TEST(CurvedContactTest, ForcesAreConservativeAlongARollingPath) {
-  // Work done on the roller's and the bore's nodes along a path that rolls, slides and presses
-  // (frictionless, trapezoidal rule) equals the change of the stored energy.
-  Scene s = MakeScene(true);
-  ContactPair pair("roller/bore", s.roller, s.bore, Options());
-  const int n = 4000;
-  double work = 0, e0 = 0, e1 = 0;
-  std::vector<double> fx_prev, fy_prev, x_prev, y_prev;
-  for (int step = 0; step <= n; ++step) {
-    const double u = static_cast<double>(step) / n;
-    const double d = kBore - kR + 5e-6 + 10e-6 * std::sin(kPi * u);
-    const double theta = -1.2 + 0.05 * u, phi = 0.7 * u;  // rolls over ~4.5 rim segments
-    PlaceRoller(&s, d, theta, phi);
-    const Force f = Evaluate(pair, &s, d, theta);
-    if (step == 0) e0 = f.stored;
-    if (step == n) e1 = f.stored;
-    if (step > 0)
-      for (int i = 0; i < kRim; ++i)
-        work += 0.5 * (s.state.fx[i] + fx_prev[i]) * (s.state.x[i] - x_prev[i]) +
-                0.5 * (s.state.fy[i] + fy_prev[i]) * (s.state.y[i] - y_prev[i]);
-    fx_prev.assign(s.state.fx.begin(), s.state.fx.begin() + kRim);
-    fy_prev.assign(s.state.fy.begin(), s.state.fy.begin() + kRim);
-    x_prev.assign(s.state.x.begin(), s.state.x.begin() + kRim);
-    y_prev.assign(s.state.y.begin(), s.state.y.begin() + kRim);
-  }
-  // The bore does not move: all the work is on the roller. W = -(E1 - E0).
+  // Work done on the roller's nodes along a path that rolls, slides and presses (frictionless,
+  // trapezoidal rule) equals minus the change of the stored energy (the bore does not move).
+  double energy_change = 0;
+  const double work = RollingPathWork(ConstantPenalty(), &energy_change);
   const double scale = 0.5 * kK * 15e-6 * 15e-6;
-  EXPECT_NEAR(work, -(e1 - e0), 1e-4 * scale) << "work " << work << " dE " << e1 - e0;
+  EXPECT_NEAR(work, -energy_change, 1e-4 * scale) << "work " << work << " dE " << energy_change;
 }
 
 TEST(CurvedContactTest, ForcesAreConservativeWhileTheSurfacesDeform) {
   // A rigid path cannot tell how the force is shared between an arc's two nodes beyond its
   // resultant and moment; a deforming one can: stretching a chord of fixed curvature moves its arc
-  // (the sagitta grows with the chord), so the pair of forces along the chord does work. Closed
-  // cycle (press, stretch both surfaces tangentially out of phase, release): the work on all
-  // nodes must come back to zero.
-  Scene s = MakeScene(true);
-  ContactPair pair("roller/bore", s.roller, s.bore, Options());
-  const double theta = -1.2;
-  std::vector<double> bx(s.state.x.begin() + kRim, s.state.x.end());
-  std::vector<double> by(s.state.y.begin() + kRim, s.state.y.end());
-  const int n = 4000, nodes = kRim + kRace;
-  double work = 0, peak = 0;
-  std::vector<double> fx_prev, fy_prev, x_prev, y_prev;
-  for (int step = 0; step <= n; ++step) {
-    const double u = static_cast<double>(step) / n;
-    const double d = kBore - kR + 10e-6 + 5e-6 * std::sin(2 * kPi * u);
-    const double strain = 2e-3 * std::cos(2 * kPi * u);  // tangential, near the contact
-    PlaceRoller(&s, d, theta, 0.013);
-    const double cx = d * std::cos(theta), cy = d * std::sin(theta);
-    for (int i = 0; i < kRim;
-         ++i) {  // slide each node along the rim by strain * R * sin(a - theta)
-      const double a = std::atan2(s.state.y[i] - cy, s.state.x[i] - cx);
-      const double b = a + strain * std::sin(a - theta);
-      s.state.x[i] = cx + kR * std::cos(b);
-      s.state.y[i] = cy + kR * std::sin(b);
-    }
-    for (int j = 0; j < kRace; ++j) {  // and the bore's, out of phase
-      const double a = std::atan2(by[j], bx[j]);
-      const double b = a - 0.5 * strain * std::sin(a - theta);
-      s.state.x[kRim + j] = kBore * std::cos(b);
-      s.state.y[kRim + j] = kBore * std::sin(b);
-    }
-    const Force f = Evaluate(pair, &s, d, theta);
-    peak = std::max(peak, f.stored);
-    if (step > 0)
-      for (int i = 0; i < nodes; ++i)
-        work += 0.5 * (s.state.fx[i] + fx_prev[i]) * (s.state.x[i] - x_prev[i]) +
-                0.5 * (s.state.fy[i] + fy_prev[i]) * (s.state.y[i] - y_prev[i]);
-    fx_prev.assign(s.state.fx.begin(), s.state.fx.end());
-    fy_prev.assign(s.state.fy.begin(), s.state.fy.end());
-    x_prev.assign(s.state.x.begin(), s.state.x.end());
-    y_prev.assign(s.state.y.begin(), s.state.y.end());
-  }
+  // (the sagitta grows with the chord), so the pair of forces along the chord does work. Over the
+  // closed cycle the work on all nodes must come back to zero.
+  double peak = 0;
+  const double work = DeformCycleWork(ConstantPenalty(), &peak);
   EXPECT_NEAR(work, 0.0, 1e-5 * peak)
       << "work over the cycle " << work << " J, peak stored " << peak;
 }
@@ -242,7 +112,7 @@ struct PathResult {
 };
 PathResult RollOverADent(int n) {
   Scene s = MakeScene(true);
-  ContactPair pair("roller/bore", s.roller, s.bore, Options());
+  ContactPair pair("roller/bore", s.roller, s.bore, ConstantPenalty());
   const double theta = -1.2, dent = 1.5e-6;
   PathResult r;
   std::vector<double> fx_prev, fy_prev, x_prev, y_prev;
@@ -315,7 +185,7 @@ FinePath RollAFineDentedRim(int steps, double rim_dent) {
   ContactSurface bore = MakeSurfaceFromChain("bore", bn, true);
   EXPECT_EQ(MarkCircularArcs(&roller, x0.data(), y0.data(), 0, 0, kR, 1e-12), nr);
   EXPECT_EQ(MarkCircularArcs(&bore, x0.data(), y0.data(), 0, 0, kBore, 1e-12), nb);
-  ContactPair pair("roller/bore", roller, bore, Options());
+  ContactPair pair("roller/bore", roller, bore, ConstantPenalty());
   FinePath r;
   std::vector<double> fx_prev, fy_prev, x_prev, y_prev;
   for (int step = 0; step <= steps; ++step) {
