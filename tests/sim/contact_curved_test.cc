@@ -88,6 +88,7 @@ TEST(CurvedContactTest, ForcesAreConservativeAlongARollingPath) {
   double energy_change = 0;
   const double work = RollingPathWork(ConstantPenalty(), &energy_change);
   const double scale = 0.5 * kK * 15e-6 * 15e-6;
+  EXPECT_GT(energy_change, 0.5 * scale);  // pressed from 5 to 15 um
   EXPECT_NEAR(work, -energy_change, 1e-4 * scale) << "work " << work << " dE " << energy_change;
 }
 

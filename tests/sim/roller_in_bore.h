@@ -117,8 +117,9 @@ struct WorkMeter {
   }
 };
 
-// A path that rolls, slides and presses the roller (over ~4.5 rim segments, frictionless) in a
-// fixed bore: returns the work on the roller and sets the change of the stored energy.
+// A path that rolls, slides and presses the roller (over ~4.5 rim segments, overlap 5 -> 15 um,
+// frictionless) in a fixed bore: returns the work on the roller and sets the change of the stored
+// energy (0.1 J).
 inline double RollingPathWork(const ContactPairOptions& options, double* energy_change) {
   Scene s = MakeScene(true);
   ContactPair pair("roller/bore", s.roller, s.bore, options);
@@ -127,7 +128,7 @@ inline double RollingPathWork(const ContactPairOptions& options, double* energy_
   WorkMeter meter;
   for (int step = 0; step <= n; ++step) {
     const double u = static_cast<double>(step) / n;
-    const double d = kBore - kR + 5e-6 + 10e-6 * std::sin(kPi * u);
+    const double d = kBore - kR + 5e-6 + 10e-6 * std::sin(0.5 * kPi * u);  // 5 -> 15 um
     const double theta = -1.2 + 0.05 * u, phi = 0.7 * u;
     PlaceRoller(&s, d, theta, phi);
     const Force f = Evaluate(pair, &s, d, theta);
