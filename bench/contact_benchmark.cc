@@ -1,7 +1,8 @@
 // Contact cost: ns per slave-node-cycle of ContactPair::AddForces for a roller-like disc rim
 // (slave) resting in a bore (master), with friction, and for far-apart pairs (bounding-box
 // rejection only); the same rim in the bore with both surfaces marked as circular arcs (curved
-// contact: arc search, blend, Jet gradient). Run: build-<you>/bench/contact_benchmark
+// contact: arc search, blend, Jet gradient) and as cubic B-splines (smooth contact: one Newton
+// point per step, warm-started). Run: build-<you>/bench/contact_benchmark
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -50,13 +51,14 @@ Setup MakeSetup(int n, int m, double offset_y, bool curved) {
   return s;
 }
 
-void Run(benchmark::State& bs, double offset_y, bool curved = false) {
+void Run(benchmark::State& bs, double offset_y, bool curved = false, bool smooth = false) {
   const int n = static_cast<int>(bs.range(0));
   Setup s = MakeSetup(n, 6 * n, offset_y, curved);
   contact::ContactPairOptions o;
   o.penalty_law = contact::PenaltyLaw::kConstant;
   o.constant_stiffness = 1e9;
   o.friction = {.static_coefficient = 0.01, .dynamic_coefficient = 0.005, .decay = 1.0};
+  o.smooth_surfaces = smooth;
   contact::ContactPair pair("bench", s.slave, s.master, o);
   for (auto _ : bs) {
     pair.AddForces(s.state, 0.0, 2e-9);
@@ -71,10 +73,12 @@ void Run(benchmark::State& bs, double offset_y, bool curved = false) {
 void BM_ContactRollerInBore(benchmark::State& bs) { Run(bs, 0.0); }
 void BM_ContactFarApart(benchmark::State& bs) { Run(bs, 0.1); }
 void BM_ContactCurvedRollerInBore(benchmark::State& bs) { Run(bs, 0.0, true); }
+void BM_ContactSmoothRollerInBore(benchmark::State& bs) { Run(bs, 0.0, true, true); }
 
 BENCHMARK(BM_ContactRollerInBore)->Arg(128)->Arg(512)->Arg(2048);
 BENCHMARK(BM_ContactFarApart)->Arg(128)->Arg(512)->Arg(2048);
 BENCHMARK(BM_ContactCurvedRollerInBore)->Arg(128)->Arg(512)->Arg(2048);
+BENCHMARK(BM_ContactSmoothRollerInBore)->Arg(128)->Arg(512)->Arg(2048);
 
 }  // namespace
 
