@@ -152,7 +152,7 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
             &s, mesh.x.data(), mesh.y.data(), cx, cy, mesh_.roller_radius_m, tol);
         contact::MarkCircularArcs(&m, mesh.x.data(), mesh.y.data(), 0, 0, race_radius, tol);
         contact::ContactPairOptions o = race;
-        o.smooth_surfaces = scene_.model.race_contact == "smooth";
+        o.smooth_surfaces = scene_.model.race_contact == "smooth" && !KeepsArcsOnItsSpall(j);
         return std::make_unique<contact::ContactPair>(
             surf + "/" + master, std::move(s), std::move(m), o);
       };
@@ -285,6 +285,12 @@ double BearingModel::TheoreticalCageSpeed(double t) const {
   const BearingGeometry& b = scene_.geometry.bearing;
   const double gamma = b.element_diameter_m * std::cos(b.contact_angle_rad) / b.pitch_diameter_m;
   return 0.5 * speed_(t) * (1.0 - gamma);
+}
+
+bool BearingModel::KeepsArcsOnItsSpall(int roller) const {
+  bool spalled = false;
+  for (const Defect& d : scene_.defects) spalled = spalled || d.roller == roller;
+  return spalled && scene_.mesh.contact_size_m >= kCurvedMinRimSpacing;
 }
 
 std::vector<std::string> BearingModel::Warnings() const {
