@@ -365,7 +365,11 @@ std::string BearingModel::Describe() const {
        << outer_pairs_.size() + inner_pairs_.size() + cage_pairs_.size()
        << " contact pairs (penalty f = " << options_.race_penalty_scale << " races, "
        << options_.cage_penalty_scale << " cage, damping " << options_.contact_damping_ratio
-       << "); cage rigid (" << cage_->nodes().size() << " nodes, roller-guided: radial play +-"
+       << "; race contact " << scene_.model.race_contact;
+    for (int j = 0; j < num_rollers(); ++j)
+      if (scene_.model.race_contact == "smooth" && KeepsArcsOnItsSpall(j))
+        os << ", roller " << j << " arcs (spalled)";
+    os << "); cage rigid (" << cage_->nodes().size() << " nodes, roller-guided: radial play +-"
        << options_.cage_guide.radial_play_m * 1e3 << " mm); ring-adapter tie " << tie_->num_pairs()
        << " node pairs";
   }
