@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "sim/contact/spline_surface.h"
 #include "sim/quasistatic/harris_jones.h"
 
 namespace spallkit::sim {
@@ -331,17 +332,8 @@ int HybridRollers::Kernel(double th, int* idx, double* w, double* dw) const {
   double sum = 0.0, dsum = 0.0;
   for (long k = k0 - m; k <= k0 + m; ++k) {
     const double u = 2.0 * outer_radius_ * (ring_theta0_ + k * ring_dtheta_ - th) / spread_;
-    const double au = std::abs(u), sign = u > 0.0 ? 1.0 : -1.0;
-    double a, da;
-    if (au < 1.0) {
-      a = 2.0 / 3.0 - u * u + 0.5 * au * au * au;
-      da = -2.0 * u + 1.5 * u * au;
-    } else if (au < 2.0) {
-      a = (2.0 - au) * (2.0 - au) * (2.0 - au) / 6.0;
-      da = -0.5 * (2.0 - au) * (2.0 - au) * sign;
-    } else {
-      continue;
-    }
+    double da;
+    const double a = contact::CubicBSpline(u, &da);
     if (a <= 0.0) continue;
     idx[count] = static_cast<int>(((k % n) + n) % n);
     w[count] = a;

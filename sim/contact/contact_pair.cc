@@ -167,8 +167,8 @@ ContactPair::ContactPair(std::string name,
         throw InputError("contact pair '" + name_ +
                          "': smooth_surfaces needs both surfaces curved (MarkCircularArcs)");
       // Topology now; the offsets need positions and are measured at the first step.
-      p.slave_spline = MakeSplineSurface(p.slave, nullptr, nullptr);
-      p.master_spline = MakeSplineSurface(p.master, nullptr, nullptr);
+      p.slave_spline = MakeSplineSurface(p.slave);
+      p.master_spline = MakeSplineSurface(p.master);
       p.spline_interior.assign(n, 0);
       for (int i = 0; i < n; ++i) {
         const SplineSurface& sp = p.slave_spline;
@@ -229,8 +229,10 @@ void ContactPair::ComputeForces(const fe::NodalState& state, double /*t*/, doubl
   }
   if (options_.smooth_surfaces && !spline_offsets_known_) {
     for (Pass& p : passes_) {
-      p.slave_spline = MakeSplineSurface(p.slave, state.x.data(), state.y.data());
-      p.master_spline = MakeSplineSurface(p.master, state.x.data(), state.y.data());
+      p.slave_spline.offset =
+          MeasureSplineOffset(p.slave, p.slave_spline, state.x.data(), state.y.data());
+      p.master_spline.offset =
+          MeasureSplineOffset(p.master, p.master_spline, state.x.data(), state.y.data());
     }
     spline_offsets_known_ = true;
   }

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/contact/arc_geometry.h"
+
 namespace spallkit::contact {
 
-SplineSurface MakeSplineSurface(const ContactSurface& surface, const double* x, const double* y) {
+SplineSurface MakeSplineSurface(const ContactSurface& surface) {
   SplineSurface s;
   const int n = surface.num_nodes();
   s.next.assign(n, -1);
@@ -27,33 +29,45 @@ SplineSurface MakeSplineSurface(const ContactSurface& surface, const double* x, 
     for (int c : s.Controls(i)) ok = ok && s.smooth[c];
     s.valid_span[i] = ok;
   }
-  // Offset of the true surface from the curve: at a node the curve passes through
-  // (x_prev + 4 x_i + x_next) / 6; measured along the node's outward normal (mean of its two
-  // segments' (dy, -dx) / L), averaged over the smooth nodes.
-  if (!x || !y) return s;  // topology only
+  return s;
+}
+
+double MeasureSplineOffset(const ContactSurface& surface,
+                           const SplineSurface& spline,
+                           const double* x,
+                           const double* y) {
+  // At a node the curve passes through (x_prev + 4 x_i + x_next) / 6; the offset is the node's
+  // distance from there along its outward normal (the mean of its two chords' normals).
   double sum = 0.0;
   int count = 0;
-  std::vector<double> node_offset;
-  for (int i = 0; i < n; ++i) {
-    if (!s.smooth[i]) continue;
-    const int gi = surface.nodes[i], gp = surface.nodes[s.previous[i]],
-              gn = surface.nodes[s.next[i]];
-    double nx = 0.0, ny = 0.0;
-    for (auto [a, b] : {std::pair{gp, gi}, std::pair{gi, gn}}) {
-      const double dx = x[b] - x[a], dy = y[b] - y[a], l = std::sqrt(dx * dx + dy * dy);
-      if (l > 0.0) nx += dy / l, ny -= dx / l;
-    }
-    const double l = std::sqrt(nx * nx + ny * ny);
+  for (int i = 0; i < surface.num_nodes(); ++i) {
+    if (!spline.smooth[i]) continue;
+    const int gi = surface.nodes[i], gp = surface.nodes[spline.previous[i]],
+              gn = surface.nodes[spline.next[i]];
+    double ax, ay, bx, by;
+    ChordNormal(x[gp], y[gp], x[gi], y[gi], &ax, &ay);
+    ChordNormal(x[gi], y[gi], x[gn], y[gn], &bx, &by);
+    const double nx = ax + bx, ny = ay + by, l = std::sqrt(nx * nx + ny * ny);
     if (!(l > 0.0)) continue;
     const double cx = (x[gp] + 4.0 * x[gi] + x[gn]) / 6.0, cy = (y[gp] + 4.0 * y[gi] + y[gn]) / 6.0;
-    node_offset.push_back(((x[gi] - cx) * nx + (y[gi] - cy) * ny) / l);
-    sum += node_offset.back();
+    sum += ((x[gi] - cx) * nx + (y[gi] - cy) * ny) / l;
     ++count;
   }
-  s.offset = count > 0 ? sum / count : 0.0;
-  for (double o : node_offset)
-    s.max_offset_spread = std::max(s.max_offset_spread, std::abs(o - s.offset));
-  return s;
+  return count > 0 ? sum / count : 0.0;
+}
+
+double CubicBSpline(double u, double* derivative) {
+  const double au = std::abs(u), sign = u > 0.0 ? 1.0 : -1.0;
+  if (au < 1.0) {
+    *derivative = -2.0 * u + 1.5 * u * au;
+    return 2.0 / 3.0 - u * u + 0.5 * au * au * au;
+  }
+  if (au < 2.0) {
+    *derivative = -0.5 * (2.0 - au) * (2.0 - au) * sign;
+    return (2.0 - au) * (2.0 - au) * (2.0 - au) / 6.0;
+  }
+  *derivative = 0.0;
+  return 0.0;
 }
 
 SplineBasis::SplineBasis(double t) {

@@ -34,7 +34,6 @@ struct SplineSurface {
   std::vector<char> smooth;         // per local node: both segments arcs of the same sense
   std::vector<char> valid_span;     // per local node: span starting there is valid
   double offset = 0.0;              // m, true surface = c + offset * outward normal
-  double max_offset_spread = 0.0;   // m, largest |node offset - offset| on the reference nodes
 
   // Control points (local node indices) of span i.
   std::array<int, 4> Controls(int i) const {
@@ -43,9 +42,19 @@ struct SplineSurface {
   }
 };
 
-// Builds the view from a curved surface (segment_curvature set) at reference positions x, y
-// (null: topology only, offset 0).
-SplineSurface MakeSplineSurface(const ContactSurface& surface, const double* x, const double* y);
+// Builds the view (neighbours, smooth nodes, valid spans) of a curved surface (segment_curvature
+// set); offset 0 until MeasureSplineOffset.
+SplineSurface MakeSplineSurface(const ContactSurface& surface);
+// The surface's offset (m) from its spline on the positions x, y (the reference ones: for nodes
+// evenly spaced on a circle of radius r, +-r (1 - cos dphi) / 3), averaged over the smooth nodes.
+double MeasureSplineOffset(const ContactSurface& surface,
+                           const SplineSurface& spline,
+                           const double* x,
+                           const double* y);
+
+// The uniform cubic B-spline B3(u) (support |u| < 2, C2) and its derivative: the shape that
+// SplineBasis evaluates span by span, for kernels at arbitrary positions (the hybrid's raceway).
+double CubicBSpline(double u, double* derivative);
 
 // Uniform cubic B-spline basis at t in [0, 1]: weights, first and second derivatives.
 struct SplineBasis {

@@ -28,8 +28,9 @@ ContactPairOptions Options(bool smooth = true) { return ConstantPenalty(smooth);
 TEST(SmoothContactTest, SplineOfACircleIsAnOffsetCircle) {
   Scene s = MakeScene(true);
   PlaceRoller(&s, 0.0, 0.0, 0.0);
-  const SplineSurface roller = MakeSplineSurface(s.roller, s.state.x.data(), s.state.y.data());
-  const SplineSurface bore = MakeSplineSurface(s.bore, s.state.x.data(), s.state.y.data());
+  SplineSurface roller = MakeSplineSurface(s.roller), bore = MakeSplineSurface(s.bore);
+  roller.offset = MeasureSplineOffset(s.roller, roller, s.state.x.data(), s.state.y.data());
+  bore.offset = MeasureSplineOffset(s.bore, bore, s.state.x.data(), s.state.y.data());
   const double dphi = 2 * kPi / kRim, dpsi = 2 * kPi / kRace;
   EXPECT_NEAR(roller.offset, kR * (1 - std::cos(dphi)) / 3, 1e-12);    // inside: convex, +
   EXPECT_NEAR(bore.offset, -kBore * (1 - std::cos(dpsi)) / 3, 1e-12);  // towards the void: -
