@@ -7,9 +7,9 @@
 #include "apps/bearing_options.h"
 #include "apps/command.h"
 #include "core/error.h"
+#include "core/record_io.h"
 #include "dsp/diagnose.h"
 #include "dsp/diagnose_report.h"
-#include "dsp/record.h"
 
 namespace {
 
@@ -38,10 +38,10 @@ int Run(const Opts& o) {
     throw InputError("--fs must be > 0 Hz (got " + std::to_string(o.fs) + ")");
   const BearingGeometry g = o.bearing.Geometry();
 
-  dsp::RecordOptions ro;
+  spallkit::RecordOptions ro;
   ro.sample_rate_hz = o.fs;
   ro.channel = o.channel;
-  const dsp::Record record = dsp::ReadRecord(o.record, ro);
+  const spallkit::Record record = spallkit::ReadRecord(o.record, ro);
 
   dsp::DiagnoseOptions opt;
   opt.harmonics = o.harmonics;

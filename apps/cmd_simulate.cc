@@ -76,7 +76,7 @@ int Run(const Opts& o) {
   const sim::SimulationSummary s = simulation.Run();
   if (tty) std::fprintf(stderr, "\n");
   std::printf("%s\n", s.BriefReport().c_str());
-  if (o.energy_ledger) std::printf("%s\n", solver::LedgerReport(s.ledger, 1 << 30).c_str());
+  if (o.energy_ledger) std::printf("%s\n", sim::solver::LedgerReport(s.ledger, 1 << 30).c_str());
   if (s.completed) {
     std::printf("wrote %s", o.output.c_str());
     if (!o.csv.empty()) std::printf(" and %s", o.csv.c_str());

@@ -21,7 +21,7 @@ spallkit::apps::Register reg(
       sub.add_flag("--json", opts->json, "Print JSON instead of a table");
       sub.add_option("--filter", opts->filter, "Only cases whose name contains this string");
       return [opts] {
-        const auto results = spallkit::verify::RunVerification(opts->filter);
+        const auto results = spallkit::sim::verify::RunVerification(opts->filter);
         bool all = true;
         for (const auto& r : results) all = all && r.pass;
         if (opts->json) {

@@ -20,14 +20,33 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("spallkit ") + SPALLKIT_VERSION);
 
+  // Parents before children: sorting by path puts "bench" before "bench fe".
   auto& commands = Commands();
   std::sort(commands.begin(), commands.end(), [](const CommandSpec& a, const CommandSpec& b) {
     return a.name < b.name;
   });
+  std::map<std::string, CLI::App*> apps_by_path;
   std::map<CLI::App*, Runner> runners;
   for (const auto& spec : commands) {
-    CLI::App* sub = app.add_subcommand(spec.name, spec.description);
-    runners[sub] = spec.setup(*sub);
+    CLI::App* parent = &app;
+    std::string leaf = spec.name;
+    if (const auto space = spec.name.rfind(' '); space != std::string::npos) {
+      const std::string parent_path = spec.name.substr(0, space);
+      leaf = spec.name.substr(space + 1);
+      auto it = apps_by_path.find(parent_path);
+      if (it == apps_by_path.end()) {
+        it = apps_by_path.emplace(parent_path, app.add_subcommand(parent_path, "")).first;
+        it->second->require_subcommand(1);
+      }
+      parent = it->second;
+    }
+    CLI::App* sub = parent->add_subcommand(leaf, spec.description);
+    apps_by_path[spec.name] = sub;
+    if (spec.setup) {
+      runners[sub] = spec.setup(*sub);
+    } else {
+      sub->require_subcommand(1);  // a group
+    }
   }
 
   try {
@@ -39,6 +58,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    // The deepest parsed command runs (a group's child, not the group).
     for (auto& [sub, run] : runners) {
       if (sub->parsed()) return run();
     }

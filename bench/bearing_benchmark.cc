@@ -26,7 +26,7 @@ void BM_HybridSimulatedMs(benchmark::State& bs) {
                  "operation.ramp_s=0.0005",
                  "solver.threads=1"});
   BearingModel model(scene);
-  spallkit::solver::ExplicitSolver& s = model.solver();
+  spallkit::sim::solver::ExplicitSolver& s = model.solver();
   s.Run(0.001);  // past the ramp
   constexpr double kChunk = 1e-4;
   long steps = 0;

@@ -16,8 +16,8 @@ using namespace spallkit;
 // Slave: a circle of n nodes, radius r, centred at (0, -(R - r) - overlap) so that it presses
 // into a master bore of radius R (m nodes, walked clockwise so the ring body is outside).
 struct Setup {
-  fe::NodalState state;
-  contact::ContactSurface slave, master;
+  sim::fe::NodalState state;
+  sim::contact::ContactSurface slave, master;
 };
 
 Setup MakeSetup(int n, int m, double offset_y, bool curved) {
@@ -41,12 +41,13 @@ Setup MakeSetup(int n, int m, double offset_y, bool curved) {
   s.state.x0 = s.state.x;
   s.state.y0 = s.state.y;
   s.state.mass.assign(n + m, 1e-4);
-  s.slave = contact::MakeSurfaceFromChain("roller", sn, true);
-  s.master = contact::MakeSurfaceFromChain("race", mn, true);
+  s.slave = sim::contact::MakeSurfaceFromChain("roller", sn, true);
+  s.master = sim::contact::MakeSurfaceFromChain("race", mn, true);
   if (curved) {
     const double cy = -(R - r) - 1e-6 + offset_y;
-    contact::MarkCircularArcs(&s.slave, s.state.x.data(), s.state.y.data(), 0.0, cy, r, 1e-12);
-    contact::MarkCircularArcs(&s.master, s.state.x.data(), s.state.y.data(), 0.0, 0.0, R, 1e-12);
+    sim::contact::MarkCircularArcs(&s.slave, s.state.x.data(), s.state.y.data(), 0.0, cy, r, 1e-12);
+    sim::contact::MarkCircularArcs(
+        &s.master, s.state.x.data(), s.state.y.data(), 0.0, 0.0, R, 1e-12);
   }
   return s;
 }
@@ -54,12 +55,12 @@ Setup MakeSetup(int n, int m, double offset_y, bool curved) {
 void Run(benchmark::State& bs, double offset_y, bool curved = false, bool smooth = false) {
   const int n = static_cast<int>(bs.range(0));
   Setup s = MakeSetup(n, 6 * n, offset_y, curved);
-  contact::ContactPairOptions o;
-  o.penalty_law = contact::PenaltyLaw::kConstant;
+  sim::contact::ContactPairOptions o;
+  o.penalty_law = sim::contact::PenaltyLaw::kConstant;
   o.constant_stiffness = 1e9;
   o.friction = {.static_coefficient = 0.01, .dynamic_coefficient = 0.005, .decay = 1.0};
   o.smooth_surfaces = smooth;
-  contact::ContactPair pair("bench", s.slave, s.master, o);
+  sim::contact::ContactPair pair("bench", s.slave, s.master, o);
   for (auto _ : bs) {
     pair.AddForces(s.state, 0.0, 2e-9);
     benchmark::DoNotOptimize(s.state.fx.data());

@@ -8,10 +8,10 @@
 namespace {
 
 void Run(benchmark::State& state, bool with_contact) {
-  spallkit::solver::EngineBenchmarkOptions o;
+  spallkit::sim::solver::EngineBenchmarkOptions o;
   o.elements = static_cast<int>(state.range(0));
   o.threads = static_cast<int>(state.range(1));
-  auto m = spallkit::solver::MakeBenchmarkModel(o, with_contact);
+  auto m = spallkit::sim::solver::MakeBenchmarkModel(o, with_contact);
   for (int k = 0; k < 5; ++k) m->solver->Step();
   for (auto _ : state) m->solver->Step();
   const double cycles = static_cast<double>(state.iterations()) * m->mesh.num_elements();

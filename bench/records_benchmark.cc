@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "dsp/plot.h"
-#include "dsp/record.h"
+#include "core/record_io.h"
 
 namespace {
 
@@ -37,7 +37,7 @@ std::string CwruLikeText(size_t rows) {
 void BM_ParseCsvCwruLike(benchmark::State& state) {
   const std::string text = CwruLikeText(144000);
   for (auto _ : state) {
-    spallkit::dsp::Record r = spallkit::dsp::ParseCsvRecord(text, "bench.csv");
+    spallkit::Record r = spallkit::ParseCsvRecord(text, "bench.csv");
     benchmark::DoNotOptimize(r.samples.data());
   }
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) *
@@ -54,7 +54,7 @@ void BM_ReadCsvMeasured(benchmark::State& state) {
   }
   const auto bytes = std::filesystem::file_size(path);
   for (auto _ : state) {
-    spallkit::dsp::Record r = spallkit::dsp::ReadCsvRecord(path);
+    spallkit::Record r = spallkit::ReadCsvRecord(path);
     benchmark::DoNotOptimize(r.samples.data());
   }
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(bytes));

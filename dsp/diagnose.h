@@ -31,7 +31,7 @@
 #include "dsp/envelope.h"
 #include "dsp/fault_bands.h"
 #include "dsp/kurtogram.h"
-#include "dsp/record.h"
+#include "core/record.h"
 #include "dsp/statistics.h"
 
 namespace spallkit::dsp {

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/constants.h"
 #include "core/error.h"
 #include "sim/contact/spline_surface.h"
 #include "sim/quasistatic/harris_jones.h"
@@ -13,7 +14,6 @@
 namespace spallkit::sim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kMaxKernel = 64;
 // Stick springs per roller: outer race, inner race, leading wall, trailing wall (the notched
 // part of the roller), then outer and inner race of the intact part of a partial-length spall.

@@ -6,13 +6,12 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/constants.h"
 #include "core/error.h"
 #include "sim/fe/mesh_primitives.h"
 
 namespace spallkit::sim {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 struct Vec {
   double x = 0, y = 0;

@@ -105,7 +105,7 @@ Recorder::Recorder(const BearingModel& model, const RecorderOptions& options)
     prev_v_.assign(nc, 0.0);
     last_fine_v_.assign(nc, 0.0);
     last_fine_a_.assign(nc, 0.0);
-    decimators_.assign(nc, dsp::StreamingDecimator(options_.fine_factor, 8));
+    decimators_.assign(nc, spallkit::StreamingDecimator(options_.fine_factor, 8));
     accel_out_.assign(nc, {});
   }
   last_orbit_.assign(z, std::numeric_limits<double>::quiet_NaN());

@@ -5,7 +5,7 @@
 //  - acceleration: each sensor channel's velocity is interpolated linearly between the solver's
 //    half-step velocities onto a uniform fine grid (fine_factor x output rate, at the half points
 //    (i + 1/2) h), differenced (the exact mean acceleration over [(i-1/2) h, (i+1/2) h], centred on
-//    i h), low-pass filtered and decimated to the output rate (dsp::StreamingDecimator), so sample
+//    i h), low-pass filtered and decimated to the output rate (spallkit::StreamingDecimator), so sample
 //    k is centred on t_k = k / output_rate like every other channel;
 //  - everything else is sampled at the first step with t >= t_k (at most one solver step, tens
 //    of ns, late): contact forces per roller, cage and roller rigid motion, energies. Outputs not
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "dsp/decimator.h"
+#include "core/decimator.h"
 #include "sim/bearing/model_builder.h"
 
 namespace spallkit::h5 {
@@ -83,7 +83,7 @@ class Recorder {
   long long fine_needed_ = 0;
   double prev_t_ = 0.0;
   std::vector<double> prev_v_, last_fine_v_, last_fine_a_;
-  std::vector<dsp::StreamingDecimator> decimators_;
+  std::vector<spallkit::StreamingDecimator> decimators_;
   std::vector<std::vector<double>> accel_out_;
   std::vector<double> last_orbit_;
 };

@@ -7,13 +7,13 @@
 #include <set>
 #include <sstream>
 
+#include "core/constants.h"
 #include "core/error.h"
 
 namespace spallkit::sim {
 namespace {
 
 constexpr double kMm = 1e-3;
-constexpr double kPi = std::numbers::pi;
 
 std::string Fmt(double v) {
   std::ostringstream os;

@@ -13,7 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/hdf5.h"
-#include "dsp/record.h"
+#include "core/record_io.h"
 
 namespace spallkit::sim {
 namespace {
@@ -271,7 +271,7 @@ void Simulation::WriteOutputs(const SimulationSummary& summary) const {
     }
     if (cols.size() < 2)
       throw InputError("simulate: --csv needs the 'acceleration' output and at least one sensor");
-    dsp::WriteCsvRecord(options_.csv_path, cols);
+    spallkit::WriteCsvRecord(options_.csv_path, cols);
   }
 }
 

@@ -12,7 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 // The helpers are templates so that contact_pair.cc can evaluate the same geometry on automatic-
 // differentiation numbers (ceres::Jet) for the exact gradient of a penetration; T = double
@@ -196,4 +196,4 @@ bool ArcNodeClosestPoints(const T s[4], double ks, const T n[2], ArcPair<T>* out
   return true;
 }
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

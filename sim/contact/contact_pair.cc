@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "sim/contact/arc_geometry.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -1076,4 +1076,4 @@ ContactPair MakeContactPair(const fe::Mesh& mesh,
                      options);
 }
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

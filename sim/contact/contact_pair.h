@@ -71,7 +71,7 @@
 #include "sim/contact/surface.h"
 #include "sim/solver/force_contributor.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 struct ContactPairOptions {
   PenaltyLaw penalty_law = PenaltyLaw::kBulkModulus;
@@ -266,4 +266,4 @@ ContactPair MakeContactPair(const fe::Mesh& mesh,
                             double thickness,
                             const ContactPairOptions& options);
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 double FrictionLaw::Coefficient(double slip_speed) const {
   if (decay == 0.0) return static_coefficient;
@@ -43,4 +43,4 @@ FrictionUpdate ReturnMap(double previous_force,
   return out;
 }
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

@@ -12,7 +12,7 @@
 
 #include <string>
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 struct FrictionLaw {
   double static_coefficient = 0.0;   // mu_s, >= 0
@@ -44,4 +44,4 @@ FrictionUpdate ReturnMap(double previous_force,
                          double stiffness,
                          double cap);
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

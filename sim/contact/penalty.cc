@@ -1,6 +1,6 @@
 #include "sim/contact/penalty.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 std::string PenaltyLawToString(PenaltyLaw law) {
   switch (law) {
@@ -27,4 +27,4 @@ bool StringToPenaltyLaw(const std::string& text, PenaltyLaw* law) {
   return true;
 }
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

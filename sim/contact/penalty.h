@@ -16,7 +16,7 @@
 
 #include <string>
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 enum class PenaltyLaw { kBulkModulus, kMassTimeStep, kConstant };
 
@@ -43,4 +43,4 @@ inline double BulkModulus(double youngs_modulus, double poisson_ratio) {
   return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio));
 }
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

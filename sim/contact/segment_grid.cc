@@ -6,7 +6,7 @@
 
 #include "sim/contact/arc_geometry.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 void SegmentGrid::Build(const ContactSurface& surface,
                         const double* x,
@@ -144,4 +144,4 @@ Projection ProjectOntoSurface(const ContactSurface& surface,
   return best;
 }
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

@@ -17,7 +17,7 @@
 
 #include "sim/contact/surface.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 class SegmentGrid {
  public:
@@ -66,4 +66,4 @@ Projection ProjectOntoSurface(const ContactSurface& surface,
                               double py,
                               std::span<const int> candidates);
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

@@ -5,7 +5,7 @@
 
 #include "sim/contact/arc_geometry.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 SplineSurface MakeSplineSurface(const ContactSurface& surface) {
   SplineSurface s;
@@ -173,4 +173,4 @@ bool SplineClosestPoints(const ContactSurface& slave,
   return false;
 }
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

@@ -24,7 +24,7 @@
 
 #include "sim/contact/surface.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 // A surface's B-spline view. Span i runs from local node i to the next node along the chain; its
 // control points are the node before i, i, and the two after. A span is valid when all four are
@@ -92,4 +92,4 @@ bool SplineClosestPoints(const ContactSurface& slave,
                          const double* y,
                          SplineContactPoint* point);
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 double ContactSurface::MeanSegmentLength(const double* x, const double* y) const {
   if (segment_a.empty()) return 0.0;
@@ -131,4 +131,4 @@ int MarkCircularArcs(ContactSurface* surface,
   return arcs;
 }
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

@@ -12,7 +12,7 @@
 
 #include "sim/fe/mesh.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 
 struct ContactSurface {
   std::string name;
@@ -66,4 +66,4 @@ int MarkCircularArcs(ContactSurface* surface,
                      double radius,
                      double tolerance);
 
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

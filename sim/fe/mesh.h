@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace spallkit::fe {
+namespace spallkit::sim::fe {
 
 struct BoundaryCurve {
   std::vector<int> nodes;
@@ -35,4 +35,4 @@ struct Mesh {
   int num_parts() const { return static_cast<int>(part_names.size()); }
 };
 
-}  // namespace spallkit::fe
+}  // namespace spallkit::sim::fe

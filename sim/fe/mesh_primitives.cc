@@ -6,12 +6,11 @@
 #include <queue>
 #include <sstream>
 
+#include "core/constants.h"
 #include "core/error.h"
 
-namespace spallkit::fe {
+namespace spallkit::sim::fe {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // n + 1 positions in [0, 1]; cell k has size proportional to r^k with r^(n-1) = ratio.
 std::vector<double> GradedPositions(int n, double ratio) {
@@ -388,4 +387,4 @@ std::vector<int> ReorderForLocality(Mesh* mesh) {
   return new_id;
 }
 
-}  // namespace spallkit::fe
+}  // namespace spallkit::sim::fe

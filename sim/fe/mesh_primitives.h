@@ -12,7 +12,7 @@
 
 #include "sim/fe/mesh.h"
 
-namespace spallkit::fe {
+namespace spallkit::sim::fe {
 
 // Which edge of a rectangle the grading concentrates elements towards.
 enum class GradeEdge { kNone, kLeft, kRight, kBottom, kTop };
@@ -85,4 +85,4 @@ double QuadArea(const Mesh& mesh, int e);
 // Returns new_id_of_old_node. Call it before building the solver and the contact pairs.
 std::vector<int> ReorderForLocality(Mesh* mesh);
 
-}  // namespace spallkit::fe
+}  // namespace spallkit::sim::fe

@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace spallkit::fe {
+namespace spallkit::sim::fe {
 
 struct NodalState {
   std::vector<double> x0, y0;  // reference (initial) coordinates, m
@@ -23,4 +23,4 @@ struct NodalState {
   }
 };
 
-}  // namespace spallkit::fe
+}  // namespace spallkit::sim::fe

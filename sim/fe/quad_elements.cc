@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "sim/fe/mesh_primitives.h"
 
-namespace spallkit::fe {
+namespace spallkit::sim::fe {
 namespace {
 
 template <typename T>
@@ -434,4 +434,4 @@ void QuadElements::Load(std::istream& in) {
     ReadVec(in, v, names[k++]);
 }
 
-}  // namespace spallkit::fe
+}  // namespace spallkit::sim::fe

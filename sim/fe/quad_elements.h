@@ -29,7 +29,7 @@
 #include "sim/fe/nodal_state.h"
 #include "sim/fe/section.h"
 
-namespace spallkit::fe {
+namespace spallkit::sim::fe {
 
 class QuadElements {
  public:
@@ -126,4 +126,4 @@ class QuadElements {
   double beta_ = 0.0;
 };
 
-}  // namespace spallkit::fe
+}  // namespace spallkit::sim::fe

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-namespace spallkit::fe {
+namespace spallkit::sim::fe {
 
 enum class PlaneMode { kPlaneStrain, kPlaneStress };
 
@@ -66,4 +66,4 @@ struct Section {
   }
 };
 
-}  // namespace spallkit::fe
+}  // namespace spallkit::sim::fe

@@ -5,12 +5,11 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/constants.h"
 #include "core/error.h"
 
 namespace spallkit::sim {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 std::string Num(double v) {
   std::ostringstream os;

@@ -5,15 +5,15 @@
 #include <ctime>
 #include <utility>
 
+#include "core/constants.h"
 #include "core/error.h"
 #include "sim/contact/contact_pair.h"
 #include "sim/contact/surface.h"
 #include "sim/fe/mesh_primitives.h"
 
-namespace spallkit::solver {
+namespace spallkit::sim::solver {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kRingIn = 0.02, kRingOut = 0.03, kRollerR = 0.005, kInterference = 1e-6,
                  kThickness = 0.01;
 
@@ -139,4 +139,4 @@ EngineBenchmarkResult RunEngineBenchmark(const EngineBenchmarkOptions& o) {
   return r;
 }
 
-}  // namespace spallkit::solver
+}  // namespace spallkit::sim::solver

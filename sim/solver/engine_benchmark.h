@@ -11,7 +11,7 @@
 #include "sim/fe/mesh.h"
 #include "sim/solver/explicit_solver.h"
 
-namespace spallkit::solver {
+namespace spallkit::sim::solver {
 
 struct EngineBenchmarkOptions {
   int elements = 40000;  // target element count (the mesh is within a few % of it)
@@ -47,4 +47,4 @@ std::unique_ptr<BenchmarkModel> MakeBenchmarkModel(const EngineBenchmarkOptions&
 // Builds both models, runs a few warm-up steps, then times options.steps steps of each.
 EngineBenchmarkResult RunEngineBenchmark(const EngineBenchmarkOptions& options);
 
-}  // namespace spallkit::solver
+}  // namespace spallkit::sim::solver

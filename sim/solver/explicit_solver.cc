@@ -12,12 +12,12 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/constants.h"
 #include "core/error.h"
 
-namespace spallkit::solver {
+namespace spallkit::sim::solver {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kNodeChunk = 1024;  // fixed node chunk: sums do not depend on the thread count
 constexpr int kRigidSums = 7;     // m, mx, my, mvx, mvy, m(x vy - y vx), m(x^2 + y^2)
 constexpr int kMinElementsPerThread = 10000;
@@ -826,4 +826,4 @@ void ExplicitSolver::LoadCheckpoint(const std::string& path) {
   }
 }
 
-}  // namespace spallkit::solver
+}  // namespace spallkit::sim::solver

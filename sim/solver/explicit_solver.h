@@ -32,7 +32,7 @@
 #include "sim/fe/section.h"
 #include "sim/solver/force_contributor.h"
 
-namespace spallkit::solver {
+namespace spallkit::sim::solver {
 
 using TimeFunction = std::function<double(double t)>;
 
@@ -268,4 +268,4 @@ class ExplicitSolver {
   std::vector<double> ledger_vx_, ledger_vy_, ledger_scratch_;
 };
 
-}  // namespace spallkit::solver
+}  // namespace spallkit::sim::solver

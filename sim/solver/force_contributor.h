@@ -9,7 +9,7 @@
 
 #include "sim/fe/nodal_state.h"
 
-namespace spallkit::solver {
+namespace spallkit::sim::solver {
 
 // Nodal forces recorded instead of added: (node, fx, fy) in the order they were produced.
 // ApplyTo adds them in that order, so a contributor that computes into a log and applies it
@@ -68,4 +68,4 @@ class ForceContributor {
   virtual void LoadState(const std::string& /*bytes*/) {}
 };
 
-}  // namespace spallkit::solver
+}  // namespace spallkit::sim::solver

@@ -6,15 +6,15 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/constants.h"
 #include "sim/contact/contact_pair.h"
 #include "sim/fe/mesh_primitives.h"
 #include "sim/solver/explicit_solver.h"
 #include "sim/verify/verification.h"
 
-namespace spallkit::verify {
+namespace spallkit::sim::verify {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kE = 210e9, kNu = 0.3, kRho = 7850.0, kThickness = 0.01;
 
 void Add(std::vector<CaseResult>* results,
@@ -458,4 +458,4 @@ void AppendContactCases(std::vector<CaseResult>* results, const std::string& fil
   }
 }
 
-}  // namespace spallkit::verify
+}  // namespace spallkit::sim::verify

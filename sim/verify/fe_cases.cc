@@ -5,15 +5,14 @@
 #include <functional>
 #include <sstream>
 
+#include "core/constants.h"
 #include "sim/fe/mesh_primitives.h"
 #include "sim/fe/section.h"
 #include "sim/solver/explicit_solver.h"
 #include "sim/verify/verification.h"
 
-namespace spallkit::verify {
+namespace spallkit::sim::verify {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void Add(std::vector<CaseResult>* out,
          std::string name,
@@ -339,4 +338,4 @@ void AppendFeCases(std::vector<CaseResult>* results, const std::string& filter) 
     Cantilever(results, filter);
 }
 
-}  // namespace spallkit::verify
+}  // namespace spallkit::sim::verify

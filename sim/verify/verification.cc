@@ -1,6 +1,6 @@
 #include "sim/verify/verification.h"
 
-namespace spallkit::verify {
+namespace spallkit::sim::verify {
 
 std::vector<CaseResult> RunVerification(const std::string& filter) {
   std::vector<CaseResult> results;
@@ -9,4 +9,4 @@ std::vector<CaseResult> RunVerification(const std::string& filter) {
   return results;
 }
 
-}  // namespace spallkit::verify
+}  // namespace spallkit::sim::verify

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-namespace spallkit::verify {
+namespace spallkit::sim::verify {
 
 struct CaseResult {
   std::string name;  // contains one of: patch, rotation, wave, cantilever, hertz, friction, energy
@@ -36,4 +36,4 @@ inline bool CaseSelected(std::string_view name, std::string_view filter) {
 // All cases whose name contains `filter` (empty: all).
 std::vector<CaseResult> RunVerification(const std::string& filter = "");
 
-}  // namespace spallkit::verify
+}  // namespace spallkit::sim::verify

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "dsp/record.h"
+#include "core/record_io.h"
 #include "tests/apps/run_spall.h"
 #include "tests/dsp/diagnose_test_signals.h"
 
@@ -29,7 +29,7 @@ std::string WriteSynthetic(const std::string& name, double seconds, bool fault) 
   std::vector<double> t(x.size());
   for (size_t i = 0; i < t.size(); ++i) t[i] = i / s.fs_hz;
   const std::string path = (std::filesystem::temp_directory_path() / name).string();
-  spallkit::dsp::WriteCsvRecord(path, {{"time_s", t}, {"accel_g", x}});
+  spallkit::WriteCsvRecord(path, {{"time_s", t}, {"accel_g", x}});
   return path;
 }
 

@@ -10,7 +10,7 @@
 
 #include "core/bearing.h"
 #include "dsp/diagnose.h"
-#include "dsp/record.h"
+#include "core/record_io.h"
 #include "tests/measured_data.h"
 
 namespace spallkit::dsp {

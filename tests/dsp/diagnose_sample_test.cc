@@ -13,7 +13,7 @@
 #include "core/bearing.h"
 #include "dsp/diagnose.h"
 #include "dsp/explain.h"
-#include "dsp/record.h"
+#include "core/record_io.h"
 #include "tests/dsp/diagnose_test_signals.h"
 
 namespace spallkit::dsp {

@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "dsp/record.h"
+#include "core/record_io.h"
 
 namespace spallkit::testing {
 
@@ -76,8 +76,8 @@ inline std::vector<double> MakeFaultSignal(const FaultSignalSpec& s) {
 }
 
 // The signal as a record at its own sample rate, as a reader would return it.
-inline dsp::Record MakeFaultRecord(const FaultSignalSpec& spec) {
-  dsp::Record r;
+inline spallkit::Record MakeFaultRecord(const FaultSignalSpec& spec) {
+  spallkit::Record r;
   r.samples = MakeFaultSignal(spec);
   r.sample_rate_hz = spec.fs_hz;
   r.source = "synthetic";

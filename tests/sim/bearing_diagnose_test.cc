@@ -15,11 +15,12 @@
 #include <numbers>
 #include <string>
 
+#include "core/constants.h"
 #include "core/hdf5.h"
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using spallkit::kPi;
 
 std::string RunCommand(const std::string& cmd, int* code) {
   std::string out;

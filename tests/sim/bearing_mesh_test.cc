@@ -6,14 +6,13 @@
 #include <map>
 #include <numbers>
 
+#include "core/constants.h"
 #include "core/error.h"
 #include "sim/bearing/mesher.h"
 #include "sim/fe/mesh_primitives.h"
 
 namespace spallkit::sim {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 const PartQuality& Part(const MeshQualityReport& r, const std::string& name) {
   for (const auto& p : r.parts)

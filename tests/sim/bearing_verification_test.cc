@@ -20,6 +20,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/constants.h"
 #include "core/hdf5.h"
 #include "dsp/envelope.h"
 #include "sim/bearing/model_builder.h"
@@ -28,8 +29,6 @@
 
 namespace spallkit::sim {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 std::string SceneFile() {
   return std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml";

@@ -14,7 +14,7 @@
 #include "sim/fe/nodal_state.h"
 #include "tests/sim/roller_in_bore.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 namespace {
 
 using namespace roller_in_bore;  // Scene, MakeScene, PlaceRoller, Evaluate, constants
@@ -230,4 +230,4 @@ TEST(CurvedContactTest, AFineDentedRimKeepsItsContactStiffnessBounded) {
 }
 
 }  // namespace
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

@@ -15,7 +15,7 @@
 #include "sim/contact/surface.h"
 #include "sim/fe/mesh_primitives.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 namespace {
 
 fe::NodalState MakeState(const std::vector<double>& x, const std::vector<double>& y, double mass) {
@@ -411,4 +411,4 @@ TEST(ContactPairOptions, RejectsBadValuesWithAMessage) {
 }
 
 }  // namespace
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

@@ -18,7 +18,7 @@
 #include "sim/fe/nodal_state.h"
 #include "tests/sim/roller_in_bore.h"
 
-namespace spallkit::contact {
+namespace spallkit::sim::contact {
 namespace {
 
 using namespace roller_in_bore;  // Scene, MakeScene, PlaceRoller, Evaluate, constants
@@ -143,4 +143,4 @@ TEST(SmoothContactTest, ANotchsCornersTouchAsNodesAndTheRimBesideItAsTheSpline) 
 }
 
 }  // namespace
-}  // namespace spallkit::contact
+}  // namespace spallkit::sim::contact

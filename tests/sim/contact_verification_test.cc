@@ -4,7 +4,7 @@
 
 #include "sim/verify/verification.h"
 
-namespace spallkit::verify {
+namespace spallkit::sim::verify {
 namespace {
 
 void ExpectAllPass(const std::string& filter, size_t expected) {
@@ -37,4 +37,4 @@ TEST(ContactVerification, BlockImpactKeepsHourglassEnergySmall) {
 }
 
 }  // namespace
-}  // namespace spallkit::verify
+}  // namespace spallkit::sim::verify

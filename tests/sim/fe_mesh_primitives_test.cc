@@ -2,13 +2,12 @@
 
 #include <cmath>
 
+#include "core/constants.h"
 #include "core/error.h"
 #include "sim/fe/mesh_primitives.h"
 
-namespace spallkit::fe {
+namespace spallkit::sim::fe {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double TotalArea(const Mesh& m) {
   double a = 0;
@@ -154,4 +153,4 @@ TEST(MeshPrimitives, InvalidInputThrows) {
 }
 
 }  // namespace
-}  // namespace spallkit::fe
+}  // namespace spallkit::sim::fe

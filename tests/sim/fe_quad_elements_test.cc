@@ -6,7 +6,7 @@
 #include "sim/fe/mesh_primitives.h"
 #include "sim/fe/quad_elements.h"
 
-namespace spallkit::fe {
+namespace spallkit::sim::fe {
 namespace {
 
 Mesh OneQuad(
@@ -137,4 +137,4 @@ TEST(QuadElements, SectionValidation) {
 }
 
 }  // namespace
-}  // namespace spallkit::fe
+}  // namespace spallkit::sim::fe

@@ -29,42 +29,43 @@ struct ImpactResult {
 
 ImpactResult DiscImpact(int n_core, int n_radial, double hourglass_coefficient) {
   const double R = 5e-3, v = 5.0;
-  fe::DiscSpec a{
+  sim::fe::DiscSpec a{
       .cx = -R - 0.05e-3, .cy = 0.0, .radius = R, .n_core = n_core, .n_radial = n_radial};
-  fe::DiscSpec b{.cx = R + 0.05e-3,
-                 .cy = 0.0,
-                 .radius = R,
-                 .n_core = n_core,
-                 .n_radial = n_radial,
-                 .theta0 = 0.01};
-  fe::Mesh mesh = fe::MergeMeshes({fe::MakeDisc("left", a), fe::MakeDisc("right", b)});
+  sim::fe::DiscSpec b{.cx = R + 0.05e-3,
+                      .cy = 0.0,
+                      .radius = R,
+                      .n_core = n_core,
+                      .n_radial = n_radial,
+                      .theta0 = 0.01};
+  sim::fe::Mesh mesh =
+      sim::fe::MergeMeshes({sim::fe::MakeDisc("left", a), sim::fe::MakeDisc("right", b)});
   // MakeDisc adds the n_core^2 core quads first: parts core / ring per disc.
   const int per_disc = mesh.num_elements() / 2;
   for (int e = 0; e < mesh.num_elements(); ++e)
     mesh.element_part[e] = 2 * (e / per_disc) + (e % per_disc < n_core * n_core ? 0 : 1);
   mesh.part_names = {"left_core", "left_ring", "right_core", "right_ring"};
-  fe::Section sec;
+  sim::fe::Section sec;
   sec.thickness = 0.01;
   sec.hourglass_coefficient = hourglass_coefficient;
-  solver::SolverOptions so;
+  sim::solver::SolverOptions so;
   so.output_every_steps = 1;
-  solver::ExplicitSolver solver(mesh, {sec, sec, sec, sec}, so);
-  contact::ContactPairOptions co;
+  sim::solver::ExplicitSolver solver(mesh, {sec, sec, sec, sec}, so);
+  sim::contact::ContactPairOptions co;
   co.symmetric = true;
   const double bulk = sec.material.youngs_modulus / (3 * (1 - 2 * sec.material.poisson_ratio));
-  contact::ContactPair pair =
-      contact::MakeContactPair(mesh, "left.outer", "right.outer", {bulk}, sec.thickness, co);
+  sim::contact::ContactPair pair =
+      sim::contact::MakeContactPair(mesh, "left.outer", "right.outer", {bulk}, sec.thickness, co);
   solver.AddContributor(&pair);
   solver.SetRigidVelocity(mesh.node_sets.at("left.all"), v, 0.0, 0.0, 0.0, 0.0);
   solver.SetRigidVelocity(mesh.node_sets.at("right.all"), -v, 0.0, 0.0, 0.0, 0.0);
   ImpactResult r;
   double peak = 0.0, e0 = 0.0;
-  solver.SetOutputCallback([&](const solver::ExplicitSolver& s) {
-    const solver::Energies e = s.energies();
+  solver.SetOutputCallback([&](const sim::solver::ExplicitSolver& s) {
+    const sim::solver::Energies e = s.energies();
     e0 = e.initial_kinetic;
     if (e.internal <= peak) return;
     peak = e.internal;
-    const fe::QuadElements& el = s.elements();
+    const sim::fe::QuadElements& el = s.elements();
     const double hg_core = el.HourglassEnergy(0) + el.HourglassEnergy(2);
     const double int_core = el.InternalEnergy(0) + el.InternalEnergy(2);
     r.hourglass_ratio = e.hourglass / e.internal;

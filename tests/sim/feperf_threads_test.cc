@@ -26,26 +26,26 @@ namespace spallkit {
 namespace {
 
 struct Run {
-  std::unique_ptr<solver::ExplicitSolver> solver;
-  std::vector<std::unique_ptr<contact::ContactPair>> pairs;
+  std::unique_ptr<sim::solver::ExplicitSolver> solver;
+  std::vector<std::unique_ptr<sim::contact::ContactPair>> pairs;
 };
 
-Run Build(const fe::Mesh& mesh, int threads, bool with_contact) {
+Run Build(const sim::fe::Mesh& mesh, int threads, bool with_contact) {
   Run r;
-  solver::SolverOptions opt;
+  sim::solver::SolverOptions opt;
   opt.num_threads = threads;
   opt.mass_damping_ratio = 0.02;
   opt.damping_frequency = 2e4;
   opt.stiffness_damping_ratio = 0.005;
   opt.stiffness_damping_frequency = 1e5;
-  fe::Section sec;
+  sim::fe::Section sec;
   sec.thickness = 0.01;
-  r.solver = std::make_unique<solver::ExplicitSolver>(
-      mesh, std::vector<fe::Section>(mesh.num_parts(), sec), opt);
-  solver::RigidBody shaft;
+  r.solver = std::make_unique<sim::solver::ExplicitSolver>(
+      mesh, std::vector<sim::fe::Section>(mesh.num_parts(), sec), opt);
+  sim::solver::RigidBody shaft;
   shaft.name = "shaft";
   shaft.nodes = mesh.node_sets.at("inner_ring.inner");
-  shaft.angle = solver::RampedRotation(3000.0, 2e-6);
+  shaft.angle = sim::solver::RampedRotation(3000.0, 2e-6);
   shaft.y_motion = [](double) { return 0.0; };
   shaft.force_x = [](double) { return 2e4; };
   r.solver->AddRigidBody(shaft);
@@ -53,11 +53,11 @@ Run Build(const fe::Mesh& mesh, int threads, bool with_contact) {
     const double bulk = sec.material.youngs_modulus / (3 * (1 - 2 * sec.material.poisson_ratio));
     const std::vector<double> k(mesh.num_parts(), bulk);
     for (int p = 1; p < mesh.num_parts(); ++p) {
-      contact::ContactPairOptions c;
+      sim::contact::ContactPairOptions c;
       c.friction.static_coefficient = 0.1;
       c.friction.dynamic_coefficient = 0.05;
       c.normal_damping_ratio = 0.1;
-      r.pairs.push_back(std::make_unique<contact::ContactPair>(contact::MakeContactPair(
+      r.pairs.push_back(std::make_unique<sim::contact::ContactPair>(sim::contact::MakeContactPair(
           mesh, mesh.part_names[p] + ".outer", "inner_ring.outer", k, sec.thickness, c)));
       r.solver->AddContributor(r.pairs.back().get());
     }
@@ -66,11 +66,11 @@ Run Build(const fe::Mesh& mesh, int threads, bool with_contact) {
 }
 
 void ExpectBitIdentical(bool with_contact) {
-  solver::EngineBenchmarkOptions o;
+  sim::solver::EngineBenchmarkOptions o;
   o.elements = 3000;
-  const fe::Mesh mesh = solver::MakeBenchmarkMesh(o);
-  ASSERT_GT(mesh.num_elements(), 4 * fe::QuadElements::kBlockSize);
-  ASSERT_GT(mesh.num_nodes(), 2 * fe::QuadElements::kGatherChunk);
+  const sim::fe::Mesh mesh = sim::solver::MakeBenchmarkMesh(o);
+  ASSERT_GT(mesh.num_elements(), 4 * sim::fe::QuadElements::kBlockSize);
+  ASSERT_GT(mesh.num_nodes(), 2 * sim::fe::QuadElements::kGatherChunk);
   Run a = Build(mesh, 1, with_contact), b = Build(mesh, 2, with_contact),
       c = Build(mesh, 3, with_contact);
   // Few steps: extra threads spin at barriers on a busy 2-core machine.
@@ -82,8 +82,8 @@ void ExpectBitIdentical(bool with_contact) {
     ASSERT_EQ(sa.vx[i], sc.vx[i]) << i;
     ASSERT_EQ(sa.vy[i], sb.vy[i]) << i;
   }
-  const solver::Energies ea = a.solver->energies(), eb = b.solver->energies(),
-                         ec = c.solver->energies();
+  const sim::solver::Energies ea = a.solver->energies(), eb = b.solver->energies(),
+                              ec = c.solver->energies();
   EXPECT_EQ(ea.internal, eb.internal);
   EXPECT_EQ(ea.hourglass, ec.hourglass);
   EXPECT_EQ(ea.damping, eb.damping);
@@ -104,19 +104,19 @@ TEST(FePerf, BitIdenticalAcrossThreadsWithContactAndDamping) { ExpectBitIdentica
 TEST(FePerf, BitIdenticalAcrossThreadsFusedGather) { ExpectBitIdentical(false); }
 
 TEST(FePerf, FusedForcesEqualSeparatePasses) {
-  fe::RectangleSpec spec;
+  sim::fe::RectangleSpec spec;
   spec.width = 0.03, spec.height = 0.01, spec.nx = 60, spec.ny = 20;
-  const fe::Mesh mesh = fe::MakeRectangle("block", spec);
-  fe::QuadElements a(mesh, {fe::Section{}}), b(mesh, {fe::Section{}});
+  const sim::fe::Mesh mesh = sim::fe::MakeRectangle("block", spec);
+  sim::fe::QuadElements a(mesh, {sim::fe::Section{}}), b(mesh, {sim::fe::Section{}});
   a.set_stiffness_damping(1e-7), b.set_stiffness_damping(1e-7);
-  fe::NodalState s;
+  sim::fe::NodalState s;
   s.Resize(mesh.num_nodes());
   s.x0 = s.x = mesh.x, s.y0 = s.y = mesh.y;
   for (int i = 0; i < mesh.num_nodes(); ++i) {  // a smooth deformation plus noise-like terms
     s.vx[i] = 0.3 * std::sin(300.0 * mesh.y[i]) + 0.01 * std::cos(7e3 * mesh.x[i] * mesh.y[i]);
     s.vy[i] = -0.2 * std::cos(200.0 * mesh.x[i]);
   }
-  fe::NodalState t = s;
+  sim::fe::NodalState t = s;
   for (int step = 0; step < 5; ++step) {
     const double h = step == 0 ? 0.0 : 1e-8;
     const double dt_a = a.ComputeForces(&s, h, 2);
@@ -137,12 +137,12 @@ TEST(FePerf, FusedForcesEqualSeparatePasses) {
 }
 
 TEST(FePerf, StableStepOfASquareIsSideOverRootTwoOverWaveSpeed) {
-  fe::RectangleSpec spec;
+  sim::fe::RectangleSpec spec;
   spec.width = 2e-3, spec.height = 1e-3, spec.nx = 2, spec.ny = 1;  // two 1 mm squares
-  const fe::Mesh mesh = fe::MakeRectangle("sq", spec);
-  fe::Section sec;
-  fe::QuadElements el(mesh, {sec});
-  fe::NodalState s;
+  const sim::fe::Mesh mesh = sim::fe::MakeRectangle("sq", spec);
+  sim::fe::Section sec;
+  sim::fe::QuadElements el(mesh, {sec});
+  sim::fe::NodalState s;
   s.Resize(mesh.num_nodes());
   s.x0 = s.x = mesh.x, s.y0 = s.y = mesh.y;
   // L_e = A / max(side, diagonal) = a^2 / (a sqrt 2) = a / sqrt 2.
@@ -156,7 +156,7 @@ TEST(FePerf, StableStepOfASquareIsSideOverRootTwoOverWaveSpeed) {
 
 TEST(FePerf, GatherCountsNodesSharedByMoreThanFourElements) {
   // Six quads around a centre node (valence 6: two slots go through the overflow list).
-  fe::Mesh mesh;
+  sim::fe::Mesh mesh;
   mesh.x = {0.0}, mesh.y = {0.0};
   const double kPi = 3.14159265358979323846;
   for (int k = 0; k < 12; ++k)
@@ -166,8 +166,8 @@ TEST(FePerf, GatherCountsNodesSharedByMoreThanFourElements) {
     mesh.element_part.push_back(0);
   }
   mesh.part_names = {"star"};
-  fe::QuadElements el(mesh, {fe::Section{}});
-  fe::NodalState s;
+  sim::fe::QuadElements el(mesh, {sim::fe::Section{}});
+  sim::fe::NodalState s;
   s.Resize(mesh.num_nodes());
   s.x0 = s.x = mesh.x, s.y0 = s.y = mesh.y;
   for (int i = 0; i < mesh.num_nodes(); ++i)

@@ -13,12 +13,12 @@
 #include <string>
 
 #include "core/bearing.h"
+#include "core/constants.h"
 #include "core/error.h"
 
 namespace spallkit::sim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 
 LoadDistributionSummary Solve(double pd_mm, double phase_rad = 0.0, double rpm = 1200.0) {

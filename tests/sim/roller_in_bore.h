@@ -11,13 +11,13 @@
 #include <numbers>
 #include <vector>
 
+#include "core/constants.h"
 #include "sim/contact/contact_pair.h"
 #include "sim/contact/surface.h"
 #include "sim/fe/nodal_state.h"
 
-namespace spallkit::contact::roller_in_bore {
+namespace spallkit::sim::contact::roller_in_bore {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kR = 3.25e-3, kBore = 22.5e-3, kK = 1e9;  // roller, bore radii (m); N/m
 constexpr int kRim = 40, kRace = 283;
 
@@ -177,4 +177,4 @@ inline double DeformCycleWork(const ContactPairOptions& options, double* peak) {
   return meter.work;
 }
 
-}  // namespace spallkit::contact::roller_in_bore
+}  // namespace spallkit::sim::contact::roller_in_bore

@@ -9,12 +9,11 @@
 #include <numbers>
 #include <string>
 
+#include "core/constants.h"
 #include "core/error.h"
 
 namespace spallkit::sim {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // Message of the InputError thrown by ParseScene, or "" when it did not throw.
 std::string ErrorOf(const std::string& text, const std::vector<std::string>& overrides = {}) {

@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "core/hdf5.h"
-#include "dsp/record.h"
+#include "core/record_io.h"
 #include "sim/bearing/constraints.h"
 #include "sim/bearing/scene.h"
 #include "sim/bearing/simulation.h"
@@ -322,7 +322,7 @@ TEST(SimulateTest, WritesTheDocumentedHdf5Layout) {
   EXPECT_NEAR(orbit[0], -M_PI / 2, 1e-9);
   EXPECT_NEAR(orbit[1], -M_PI / 2 + 2 * M_PI / z, 1e-9);
   // The CSV carries the same acceleration for spall diagnose.
-  const dsp::Record csv = dsp::ReadCsvRecord(o.csv_path);
+  const spallkit::Record csv = spallkit::ReadCsvRecord(o.csv_path);
   EXPECT_EQ(csv.samples, f.ReadDataset("/signals/accel_y"));
   EXPECT_NEAR(csv.sample_rate_hz, 50000.0, 1e-6);
   std::remove(o.output_path.c_str());
@@ -489,8 +489,8 @@ TEST(SimulateCliTest, PrintsTheSummaryAndWritesFiles) {
                           "  roller0..12: ",
                           "max skew"})
     EXPECT_NE(out.find(key), std::string::npos) << key << "\n" << out;
-  EXPECT_NO_THROW(dsp::ReadHdf5Record(h5));
-  EXPECT_NO_THROW(dsp::ReadCsvRecord(csv));
+  EXPECT_NO_THROW(spallkit::ReadHdf5Record(h5));
+  EXPECT_NO_THROW(spallkit::ReadCsvRecord(csv));
   EXPECT_EQ(out.find("energy ledger"), std::string::npos) << out;  // only when asked
   std::remove(h5.c_str());
   std::remove(csv.c_str());

@@ -4,15 +4,14 @@
 #include <cstdio>
 #include <string>
 
+#include "core/constants.h"
 #include "core/error.h"
 #include "sim/contact/contact_pair.h"
 #include "sim/fe/mesh_primitives.h"
 #include "sim/solver/explicit_solver.h"
 
-namespace spallkit::solver {
+namespace spallkit::sim::solver {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Inner ring (bore tied to a rigid shaft with prescribed rotation, free translation under a
 // radial load) plus a loose disc: exercises elements, damping, constraints and outputs.
@@ -357,4 +356,4 @@ TEST(ExplicitSolver, LinearRampRisesFromZeroThenHolds) {
 }
 
 }  // namespace
-}  // namespace spallkit::solver
+}  // namespace spallkit::sim::solver

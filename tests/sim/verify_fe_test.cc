@@ -3,7 +3,7 @@
 
 #include "sim/verify/verification.h"
 
-namespace spallkit::verify {
+namespace spallkit::sim::verify {
 namespace {
 
 void ExpectCasesPass(const std::string& filter, size_t expected_count) {
@@ -33,4 +33,4 @@ TEST(VerifyFe, FilterSelectsNothingForUnknownName) {
 }
 
 }  // namespace
-}  // namespace spallkit::verify
+}  // namespace spallkit::sim::verify

@@ -1,11 +1,11 @@
-#include "dsp/decimator.h"
+#include "core/decimator.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-using spallkit::dsp::StreamingDecimator;
+using spallkit::StreamingDecimator;
 
 namespace {
 // Amplitude of a sine of frequency f in x (least squares against sin/cos at the same rate).

@@ -13,7 +13,7 @@
 
 #include <vector>
 
-namespace spallkit::dsp {
+namespace spallkit {
 
 class StreamingDecimator {
  public:
@@ -45,4 +45,4 @@ class StreamingDecimator {
 // cutoff is a fraction of the sampling rate (0 < cutoff < 0.5).
 std::vector<double> DesignLowPass(int num_taps, double cutoff);
 
-}  // namespace spallkit::dsp
+}  // namespace spallkit

@@ -1,6 +1,6 @@
 // Tests for the record readers: every accepted layout, and one test per kind of bad input, each
 // checking that the message is one line naming the file, the line and what was expected.
-#include "dsp/record.h"
+#include "core/record_io.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -17,7 +17,7 @@
 #include "core/hdf5.h"
 #include "tests/measured_data.h"
 
-namespace spallkit::dsp {
+namespace spallkit {
 namespace {
 
 namespace fs = std::filesystem;
@@ -479,4 +479,4 @@ TEST(RecordSample, BuiltInSampleRecordReads) {
 }
 
 }  // namespace
-}  // namespace spallkit::dsp
+}  // namespace spallkit

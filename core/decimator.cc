@@ -1,11 +1,11 @@
-#include "dsp/decimator.h"
+#include "core/decimator.h"
 
 #include <cmath>
 #include <numbers>
 
 #include "core/error.h"
 
-namespace spallkit::dsp {
+namespace spallkit {
 
 std::vector<double> DesignLowPass(int num_taps, double cutoff) {
   SPALLKIT_CHECK(num_taps >= 1 && cutoff > 0 && cutoff < 0.5, "bad FIR design");
@@ -74,4 +74,4 @@ void StreamingDecimator::RestoreState(const std::vector<double>& state) {
   head_ = static_cast<int>(state.back());
 }
 
-}  // namespace spallkit::dsp
+}  // namespace spallkit

@@ -1,4 +1,4 @@
-// Reading a single-channel vibration record from a CSV/text file or an HDF5 file.
+// Reading and writing single-channel vibration records (core/record.h) as CSV/text or HDF5.
 //
 // A Record is the input of every diagnosis stage: uniformly sampled samples of one channel, its
 // sample rate, and where it came from. Readers validate everything a later stage would silently
@@ -64,19 +64,9 @@
 #include <utility>
 #include <vector>
 
-namespace spallkit::dsp {
+#include "core/record.h"
 
-struct Record {
-  std::vector<double> samples;  // one channel, uniformly sampled
-  double sample_rate_hz = 0;
-  std::string channel;  // header name, "column <k>" (0-based data column) or HDF5 dataset path
-  std::string units;    // "" when the file does not say
-  std::string source;   // the file path; for HDF5 "<file>:<dataset path>"
-
-  double duration_s() const {
-    return sample_rate_hz > 0 ? static_cast<double>(samples.size()) / sample_rate_hz : 0.0;
-  }
-};
+namespace spallkit {
 
 struct RecordOptions {
   // > 0: use this sample rate and ignore the time column / attributes. 0: infer (see above).
@@ -105,4 +95,4 @@ Record ParseCsvRecord(std::string_view text,
 void WriteCsvRecord(const std::string& path,
                     const std::vector<std::pair<std::string, std::vector<double>>>& columns);
 
-}  // namespace spallkit::dsp
+}  // namespace spallkit

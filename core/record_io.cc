@@ -1,4 +1,4 @@
-#include "dsp/record.h"
+#include "core/record_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -16,7 +16,7 @@
 #include "core/error.h"
 #include "core/hdf5.h"
 
-namespace spallkit::dsp {
+namespace spallkit {
 namespace {
 
 // Jitter allowed on a time column, as a fraction of the step (see record.h).
@@ -688,4 +688,4 @@ void WriteCsvRecord(const std::string& path,
   WriteFileAtomically(path, out);
 }
 
-}  // namespace spallkit::dsp
+}  // namespace spallkit
