@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "dsp/plot.h"
 #include "core/record_io.h"
+#include "plot/plot.h"
 
 namespace {
 
@@ -62,12 +62,12 @@ void BM_ReadCsvMeasured(benchmark::State& state) {
 BENCHMARK(BM_ReadCsvMeasured)->Unit(benchmark::kMillisecond);
 
 void BM_RenderSpectrumPng(benchmark::State& state) {
-  spallkit::dsp::LinePlot plot;
+  spallkit::plot::LinePlot plot;
   plot.title = "Squared envelope spectrum";
   plot.x_label = "frequency (Hz)";
   plot.y_label = "SES ((m/s^2)^2)";
-  spallkit::dsp::LineSeries s;
-  s.color = spallkit::dsp::PaletteColor(0);
+  spallkit::plot::LineSeries s;
+  s.color = spallkit::plot::PaletteColor(0);
   s.label = "SES";
   const int n = static_cast<int>(state.range(0));
   for (int i = 0; i < n; ++i) {
@@ -79,20 +79,20 @@ void BM_RenderSpectrumPng(benchmark::State& state) {
     plot.markers.push_back({k * 115.08, std::to_string(k) + "f_b", {214, 39, 40}, true, false});
   }
   for (auto _ : state) {
-    std::vector<unsigned char> png = spallkit::dsp::RenderLinePlotPng(plot);
+    std::vector<unsigned char> png = spallkit::plot::RenderLinePlotPng(plot);
     benchmark::DoNotOptimize(png.data());
   }
 }
 BENCHMARK(BM_RenderSpectrumPng)->Arg(2000)->Arg(200000)->Unit(benchmark::kMillisecond);
 
 void BM_RenderHeatmapPng(benchmark::State& state) {
-  spallkit::dsp::Heatmap map;
+  spallkit::plot::Heatmap map;
   map.title = "Kurtogram";
   map.rows = 16;
   map.cols = 3 * 256;
   for (int i = 0; i < map.rows * map.cols; ++i) map.values.push_back(std::sin(i * 0.01));
   for (auto _ : state) {
-    std::vector<unsigned char> png = spallkit::dsp::RenderHeatmapPng(map);
+    std::vector<unsigned char> png = spallkit::plot::RenderHeatmapPng(map);
     benchmark::DoNotOptimize(png.data());
   }
 }

@@ -6,12 +6,21 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "dsp/plot.h"
 #include "dsp/spectra.h"
+#include "plot/plot.h"
 
 namespace spallkit::dsp {
 
 namespace {
+
+using plot::Heatmap;
+using plot::LinePlot;
+using plot::LineSeries;
+using plot::Marker;
+using plot::PaletteColor;
+using plot::Rgb;
+using plot::WriteHeatmap;
+using plot::WriteLinePlot;
 
 // "g" -> "g^2", "m/s^2" -> "(m/s^2)^2": a compound unit is bracketed before squaring.
 std::string Squared(const std::string& units) {

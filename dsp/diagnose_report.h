@@ -1,4 +1,4 @@
-// PNG figures of a diagnosis (dsp/plot.h):
+// PNG figures of a diagnosis (plot/plot.h):
 //   ses.png          squared envelope spectrum of the chosen band with dashed, labelled markers at
 //                    each family's harmonics (one colour per family) and thin ones at sidebands;
 //                    the band is in the title

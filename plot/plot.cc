@@ -1,4 +1,4 @@
-#include "dsp/plot.h"
+#include "plot/plot.h"
 
 #include <algorithm>
 #include <cctype>
@@ -13,7 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 
-namespace spallkit::dsp {
+namespace spallkit::plot {
 namespace {
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
@@ -973,4 +973,4 @@ void WriteHeatmap(const std::string& png_path, const Heatmap& map) {
   RenderToFile(png_path, [&] { return RenderHeatmapPng(map); });
 }
 
-}  // namespace spallkit::dsp
+}  // namespace spallkit::plot

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace spallkit::dsp {
+namespace spallkit::plot {
 
 struct Rgb {
   unsigned char r = 0, g = 0, b = 0;
@@ -104,4 +104,4 @@ std::vector<double> NiceTicks(double lo, double hi, int target = 8);
 // "0" for values within step*1e-9 of zero, exponent form for very large or small values.
 std::string FormatTick(double value, double step);
 
-}  // namespace spallkit::dsp
+}  // namespace spallkit::plot

@@ -1,7 +1,7 @@
 // Tests for PNG rendering: tick arithmetic, and rendered images checked pixel by pixel (size,
 // frame, data colour where the data is, viridis ends of the colorbar). Set SPALLKIT_PLOT_DIR to
 // keep the images for a look.
-#include "dsp/plot.h"
+#include "plot/plot.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -16,7 +16,7 @@
 
 #include "core/error.h"
 
-namespace spallkit::dsp {
+namespace spallkit::plot {
 namespace {
 
 namespace fs = std::filesystem;
@@ -366,4 +366,4 @@ TEST_F(PlotTest, HeatmapBadInputsThrowInputError) {
 }
 
 }  // namespace
-}  // namespace spallkit::dsp
+}  // namespace spallkit::plot
