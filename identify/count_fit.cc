@@ -382,7 +382,11 @@ std::vector<double> HumpFourier(const HumpShape& shape, int orders) {
 // kPhaseSteps, coordinate sweeps), a common offset of the humps within +/- one slot (feature A's
 // hump centre is only as good as that average's lumps; grid and parabola) and two hump shapes.
 // Parameters: one complex p_j per harmonic, K - 1 phases, K - 1 strength ratios and the offset.
-double SidebandChi2(const SpinSidebands& sb, const HumpFit& f, int z, int* parameters) {
+double SidebandChi2(const SpinSidebands& sb,
+                    const HumpFit& f,
+                    int z,
+                    int* parameters,
+                    std::vector<double>* spin_phase) {
   const int k = static_cast<int>(f.slots.size());
   std::vector<double> phase(k, 0.0);
   if (k == 0) {
@@ -403,6 +407,8 @@ double SidebandChi2(const SpinSidebands& sb, const HumpFit& f, int z, int* param
   plain.edge_gain = 0.0;
   plain.smear_rad = 0.02;
   double best = std::numeric_limits<double>::infinity();
+  double best_phase_chi2 = std::numeric_limits<double>::infinity();
+  std::vector<double> best_phase(k, 0.0);
   for (const HumpShape& shape : {f.shape, plain}) {
     const std::vector<double> mm = HumpFourier(shape, sb.orders);
     std::vector<std::complex<double>> em(static_cast<size_t>(2 * sb.orders + 1) * k);
@@ -439,6 +445,7 @@ double SidebandChi2(const SpinSidebands& sb, const HumpFit& f, int z, int* param
             if (phase[q] != keep) break;
           }
         }
+      if (c < best_phase_chi2) best_phase_chi2 = c, best_phase = phase;
       return c;
     };
     std::vector<double> c(kDeltaSteps);
@@ -455,6 +462,7 @@ double SidebandChi2(const SpinSidebands& sb, const HumpFit& f, int z, int* param
         best = std::min(best, at(-range + step * (ib + 0.5 * (c[ib - 1] - c[ib + 1]) / den)));
     }
   }
+  if (spin_phase) *spin_phase = best_phase;
   return best;
 }
 
@@ -508,7 +516,7 @@ CountFit FitRollerCount(const CageAverage& average,
   std::vector<int> n_configs(kmax + 1, 1);
   auto score_b = [&](HumpFit* f) {
     int p = 0;
-    if (sb) f->chi2_sidebands = SidebandChi2(*sb, *f, z, &p);
+    if (sb) f->chi2_sidebands = SidebandChi2(*sb, *f, z, &p, &f->spin_phase_rad);
     return p;
   };
   auto valid = [&](const HumpFit& f) {

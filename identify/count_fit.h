@@ -91,6 +91,9 @@ struct HumpFit {
   HumpShape shape;
   double chi2 = 0.0;            // feature A
   double chi2_sidebands = 0.0;  // feature B (0 when not used)
+  // Feature B's spall spin phases phi_k (phi_1 = 0): roller k strikes (phi_k - phi_1) / (2 pi f_s)
+  // after roller 1, modulo half a spin turn.
+  std::vector<double> spin_phase_rad;
   bool refined = false;         // Ceres-refined (else from the linear screen)
   std::vector<double> model;    // feature A's model per bin
 };
@@ -128,7 +131,12 @@ double SmoothedHump(double x, const HumpShape& shape, double bin_rad);
 // Feature B's chi2 of one configuration (its slots, strengths, theta_0 and shape from feature
 // A), minimised over the spin phases, strength ratios, a hump offset and two shapes as described
 // above; *parameters receives its parameter count. Exposed for tests.
-double SidebandChi2(const SpinSidebands& sidebands, const HumpFit& fit, int z, int* parameters);
+// *spin_phase (may be null) receives phi_k (phi_1 = 0).
+double SidebandChi2(const SpinSidebands& sidebands,
+                    const HumpFit& fit,
+                    int z,
+                    int* parameters,
+                    std::vector<double>* spin_phase = nullptr);
 
 // Fourier coefficients M_m = (1/2 pi) int H(x) cos(m x) dx, m = 0..orders (H without bin width).
 std::vector<double> HumpFourier(const HumpShape& shape, int orders);

@@ -205,6 +205,18 @@ Identification Identify(const Record& record,
     width_reason = "width: not identifiable (no delay range at this speed and sample rate)";
     return finish();
   }
+  if (id.count_identifiable && id.count >= 2) {
+    // Other rollers' impacts fall at fixed lags from one roller's: leave those lags out.
+    const std::vector<double>& ph = id.count_fit.best[id.count].spin_phase_rad;
+    const double half_turn = 0.5 / id.spin_hz;
+    for (size_t a = 0; a < ph.size(); ++a)
+      for (size_t b = a + 1; b < ph.size(); ++b) {
+        double lag = std::fmod((ph[b] - ph[a]) / (2.0 * kPi * id.spin_hz), half_turn);
+        if (lag < 0) lag += half_turn;
+        wo.excluded_lags_s.push_back(lag);
+        wo.excluded_lags_s.push_back(half_turn - lag);
+      }
+  }
   const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
   id.width_fit = FitEntryExit(sew, fs, zone, block, wo);
   const WidthFit& wf = id.width_fit;

@@ -39,6 +39,10 @@ struct WidthFitOptions {
   int delay_grid = 80;
   int bootstrap = 200;
   int min_blocks = 3;  // blocks (cage revolutions) with load-zone samples
+  // Lags left out of the fit (+/- excluded_half_width_s around each): where other defective
+  // rollers' impacts fall relative to one roller's (from the count's spin phases).
+  std::vector<double> excluded_lags_s;
+  double excluded_half_width_s = 0.4e-3;
   unsigned seed = 1;
 
   bool IsValid(std::string* error) const;
