@@ -94,8 +94,8 @@ struct HumpFit {
   // Feature B's spall spin phases phi_k (phi_1 = 0): roller k strikes (phi_k - phi_1) / (2 pi f_s)
   // after roller 1, modulo half a spin turn.
   std::vector<double> spin_phase_rad;
-  bool refined = false;         // Ceres-refined (else from the linear screen)
-  std::vector<double> model;    // feature A's model per bin
+  bool refined = false;       // Ceres-refined (else from the linear screen)
+  std::vector<double> model;  // feature A's model per bin
 };
 
 struct CountFit {

@@ -217,6 +217,7 @@ Identification Identify(const Record& record,
         wo.excluded_lags_s.push_back(half_turn - lag);
       }
   }
+  wo.noise_correlation_s = 1.0 / (id.width_band_high_hz - id.width_band_low_hz);
   const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
   id.width_fit = FitEntryExit(sew, fs, zone, block, wo);
   const WidthFit& wf = id.width_fit;

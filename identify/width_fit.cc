@@ -27,6 +27,12 @@ T Emg(const T& tau, const T& rise, const T& decay) {
   return T(0.5) * exp(arg) * erfc((a - x) / T(std::sqrt(2.0)));
 }
 
+// The noise's own correlation: a Gaussian of its correlation time (one sample when white).
+double NoisePeak(double tau, double width) {
+  const double u = tau / std::max(width, 1e-12);
+  return std::exp(-0.5 * u * u);
+}
+
 template <typename T>
 T Symmetric(const T& tau, const T& rise, const T& decay) {
   return T(0.5) * (Emg(tau, rise, decay) + Emg(-tau, rise, decay));
@@ -35,13 +41,15 @@ T Symmetric(const T& tau, const T& rise, const T& decay) {
 struct CorrelationResidual {
   const EnvelopeCorrelation* r;
   int lags;
+  double noise_s;
   template <typename T>
   bool operator()(const T* lin, const T* delay, const T* shape, T* residuals) const {
-    // lin = {c, P_0, P_1}, delay = {dt}, shape = {sigma_0, tau_d, sigma_1 - sigma_0}
+    // lin = {c, P_0, P_1, P_noise}, delay = {dt}, shape = {sigma_0, tau_d, sigma_1 - sigma_0}
     for (int i = 0; i < lags; ++i) {
       const T tau(r->TauSeconds(i));
       const T m = lin[0] + lin[1] * Symmetric(tau, shape[0], shape[1]) +
-                  lin[2] * Symmetric(tau - delay[0], shape[0] + shape[2], shape[1]);
+                  lin[2] * Symmetric(tau - delay[0], shape[0] + shape[2], shape[1]) +
+                  lin[3] * NoisePeak(r->TauSeconds(i), noise_s);
       residuals[i] = (T(r->mean[i]) - m) / r->sigma[i];
     }
     return true;
@@ -53,7 +61,8 @@ std::vector<double> ModelOf(const EnvelopeCorrelation& r, int lags, const EntryE
   for (int i = 0; i < lags; ++i) {
     const double tau = r.TauSeconds(i);
     m[i] = f.offset + f.zero_lag_power * SymmetricEventShape(tau, f.rise_s, f.decay_s) +
-           f.delay_power * SymmetricEventShape(tau - f.delay_s, f.delay_rise_s, f.decay_s);
+           f.delay_power * SymmetricEventShape(tau - f.delay_s, f.delay_rise_s, f.decay_s) +
+           f.noise_power * NoisePeak(tau, f.noise_correlation_s);
   }
   return m;
 }
@@ -67,44 +76,50 @@ double Chi2Of(const EnvelopeCorrelation& r, const std::vector<double>& model) {
   return c;
 }
 
-// Weighted linear least squares for (c, P_0, P_1) at fixed delay and shape; false if a power is
-// negative or the system singular.
+// Weighted linear least squares for (c, P_0, P_1, P_noise) at fixed delay and shape; false if a
+// power is negative or the system singular.
 bool LinearPart(const EnvelopeCorrelation& r, int lags, EntryExitFit* f) {
-  double ata[3][3] = {{0}}, atb[3] = {0};
+  constexpr int kN = 4;
+  double a[kN][kN] = {{0}}, x[kN] = {0};
   for (int i = 0; i < lags; ++i) {
     const double tau = r.TauSeconds(i);
-    const double row[3] = {1.0,
-                           SymmetricEventShape(tau, f->rise_s, f->decay_s),
-                           SymmetricEventShape(tau - f->delay_s, f->delay_rise_s, f->decay_s)};
+    const double row[kN] = {1.0,
+                            SymmetricEventShape(tau, f->rise_s, f->decay_s),
+                            SymmetricEventShape(tau - f->delay_s, f->delay_rise_s, f->decay_s),
+                            NoisePeak(tau, f->noise_correlation_s)};
     const double w = 1.0 / (r.sigma[i] * r.sigma[i]);
-    for (int a = 0; a < 3; ++a) {
-      atb[a] += w * row[a] * r.mean[i];
-      for (int b = 0; b < 3; ++b) ata[a][b] += w * row[a] * row[b];
+    for (int p = 0; p < kN; ++p) {
+      x[p] += w * row[p] * r.mean[i];
+      for (int q = 0; q < kN; ++q) a[p][q] += w * row[p] * row[q];
     }
   }
-  auto det = [](double m[3][3]) {
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  };
-  const double d = det(ata);
-  if (!(std::abs(d) > 0)) return false;
-  double x[3];
-  for (int c = 0; c < 3; ++c) {
-    double m[3][3];
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) m[a][b] = b == c ? atb[a] : ata[a][b];
-    x[c] = det(m) / d;
+  for (int c = 0; c < kN; ++c) {  // Gaussian elimination, partial pivoting
+    int piv = c;
+    for (int p = c + 1; p < kN; ++p)
+      if (std::abs(a[p][c]) > std::abs(a[piv][c])) piv = p;
+    if (!(std::abs(a[piv][c]) > 1e-300)) return false;
+    std::swap(a[c], a[piv]);
+    std::swap(x[c], x[piv]);
+    for (int p = c + 1; p < kN; ++p) {
+      const double m = a[p][c] / a[c][c];
+      for (int q = c; q < kN; ++q) a[p][q] -= m * a[c][q];
+      x[p] -= m * x[c];
+    }
   }
-  if (x[1] < 0 || x[2] < 0 || !std::isfinite(x[0])) return false;
+  for (int p = kN - 1; p >= 0; --p) {
+    for (int q = p + 1; q < kN; ++q) x[p] -= a[p][q] * x[q];
+    x[p] /= a[p][p];
+  }
+  if (x[1] < 0 || x[2] < 0 || x[3] < 0 || !std::isfinite(x[0])) return false;
   f->offset = x[0];
   f->zero_lag_power = x[1];
   f->delay_power = x[2];
+  f->noise_power = x[3];
   return true;
 }
 
 struct Bounds {
-  double min_delay, max_delay, min_rise, max_rise, min_decay, max_decay;
+  double min_delay, max_delay, min_rise, max_rise, min_decay, max_decay, noise_correlation;
 };
 
 EntryExitFit Fit(const EnvelopeCorrelation& r,
@@ -126,6 +141,7 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
         for (double extra : {0.0, 0.1e-3})
           for (int g = 0; g < grid; ++g) {
             EntryExitFit f;
+            f.noise_correlation_s = bd.noise_correlation;
             f.rise_s = std::clamp(rise, bd.min_rise, bd.max_rise);
             f.delay_rise_s = std::min(f.rise_s + extra, bd.max_rise + f.rise_s);
             f.decay_s = std::clamp(decay, bd.min_decay, bd.max_decay);
@@ -137,6 +153,7 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
           }
     if (!std::isfinite(best.chi2)) {
       best = EntryExitFit{};
+      best.noise_correlation_s = bd.noise_correlation;
       best.rise_s = best.delay_rise_s = bd.min_rise;
       best.decay_s = bd.min_decay;
       best.delay_s = bd.min_delay;
@@ -144,15 +161,16 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
       best.chi2 = Chi2Of(r, best.model);
     }
   }
-  double lin[3] = {best.offset, best.zero_lag_power, best.delay_power};
+  double lin[4] = {best.offset, best.zero_lag_power, best.delay_power, best.noise_power};
   double delay[1] = {best.delay_s};
   double shape[3] = {best.rise_s, best.decay_s, std::max(0.0, best.delay_rise_s - best.rise_s)};
   ceres::Problem problem;
-  auto* cost = new ceres::AutoDiffCostFunction<CorrelationResidual, ceres::DYNAMIC, 3, 1, 3>(
-      new CorrelationResidual{&r, lags}, lags);
+  auto* cost = new ceres::AutoDiffCostFunction<CorrelationResidual, ceres::DYNAMIC, 4, 1, 3>(
+      new CorrelationResidual{&r, lags, best.noise_correlation_s}, lags);
   problem.AddResidualBlock(cost, nullptr, lin, delay, shape);
   problem.SetParameterLowerBound(lin, 1, 0.0);
   problem.SetParameterLowerBound(lin, 2, 0.0);
+  problem.SetParameterLowerBound(lin, 3, 0.0);
   problem.SetParameterLowerBound(delay, 0, bd.min_delay);
   problem.SetParameterUpperBound(delay, 0, bd.max_delay);
   problem.SetParameterLowerBound(shape, 0, bd.min_rise);
@@ -171,6 +189,8 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
   f.offset = lin[0];
   f.zero_lag_power = lin[1];
   f.delay_power = lin[2];
+  f.noise_power = lin[3];
+  f.noise_correlation_s = best.noise_correlation_s;
   f.delay_s = delay[0];
   f.rise_s = shape[0];
   f.decay_s = shape[1];
@@ -191,6 +211,34 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
     }
   }
   return improved ? f : best;
+}
+
+// chi2 of the best fit without the second event (P_1 = 0, the rest refitted from `best`).
+double NullChi2(const EnvelopeCorrelation& r, int lags, const Bounds& bd, const EntryExitFit& best) {
+  double lin[4] = {best.offset, best.zero_lag_power, 0.0, best.noise_power};
+  double delay[1] = {best.delay_s};
+  double shape[3] = {best.rise_s, best.decay_s, std::max(0.0, best.delay_rise_s - best.rise_s)};
+  ceres::Problem problem;
+  auto* cost = new ceres::AutoDiffCostFunction<CorrelationResidual, ceres::DYNAMIC, 4, 1, 3>(
+      new CorrelationResidual{&r, lags, best.noise_correlation_s}, lags);
+  problem.AddResidualBlock(cost, nullptr, lin, delay, shape);
+  problem.SetManifold(lin, new ceres::SubsetManifold(4, {2}));
+  problem.SetParameterBlockConstant(delay);
+  problem.SetParameterLowerBound(lin, 1, 0.0);
+  problem.SetParameterLowerBound(lin, 3, 0.0);
+  problem.SetParameterLowerBound(shape, 0, bd.min_rise);
+  problem.SetParameterUpperBound(shape, 0, bd.max_rise);
+  problem.SetParameterLowerBound(shape, 1, bd.min_decay);
+  problem.SetParameterUpperBound(shape, 1, bd.max_decay);
+  problem.SetParameterLowerBound(shape, 2, 0.0);
+  problem.SetParameterUpperBound(shape, 2, bd.max_rise);
+  ceres::Solver::Options so;
+  so.max_num_iterations = 50;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  return 2.0 * summary.final_cost;
 }
 
 // Mean and pooled standard error over blocks (a subset `use` of them, with repetition).
@@ -331,6 +379,7 @@ WidthFit FitEntryExit(std::span<const double> se,
   bd.max_rise = 0.6e-3;
   bd.min_decay = 0.5 / rate_hz;
   bd.max_decay = 3.0e-3;
+  bd.noise_correlation = std::max(o.noise_correlation_s, 0.5 / rate_hz);
   out.best = Fit(out.correlation, lags, bd, nullptr, o.delay_grid, &out.delay_standard_error_s);
   out.usable = true;
 
@@ -355,13 +404,27 @@ WidthFit FitEntryExit(std::span<const double> se,
       const size_t i = static_cast<size_t>(x);
       return i + 1 < delays.size() ? delays[i] + (x - i) * (delays[i + 1] - delays[i]) : delays[i];
     };
-    out.delay_low_s = q(0.05);
-    out.delay_high_s = q(0.95);
+    // Percentiles of a block bootstrap with few blocks are too narrow (the resamples hold fewer
+    // distinct blocks than the record): the interval is also at least +/- t(0.95, n-1) times
+    // the bootstrap standard deviation corrected by n / (n - 1).
     double m = 0, m2 = 0;
-    for (double p : powers) m += p, m2 += p * p;
-    m /= powers.size();
-    const double sd = std::sqrt(std::max(0.0, m2 / powers.size() - m * m));
-    out.delay_power_significance = sd > 0 ? out.best.delay_power / sd : 0.0;
+    for (double v : delays) m += v, m2 += v * v;
+    m /= delays.size();
+    const double sd = std::sqrt(std::max(0.0, m2 / delays.size() - m * m));
+    const double nb = out.blocks;
+    const double t95 = nb >= 31 ? 1.70 : 1.645 + 2.0 / (nb - 1.0);  // one-sided 95 % of t
+    const double half = t95 * sd * std::sqrt(nb / (nb - 1.0));
+    out.delay_low_s = std::max(bd.min_delay, std::min(q(0.05), out.best.delay_s - half));
+    out.delay_high_s = std::min(bd.max_delay, std::max(q(0.95), out.best.delay_s + half));
+    (void)powers;
+    // Significance of the second event: the likelihood-ratio statistic against no second event,
+    // in units of the best fit's reduced chi2 and of the lags' correlation length (R is smooth
+    // over about 2 rise times, so neighbouring lags are not independent).
+    const double chi2_0 = NullChi2(out.correlation, lags, bd, out.best);
+    const double scale = std::max(1.0, out.best.chi2 / std::max(1, lags - 8));
+    const double corr = std::max(1.0, 2.0 * out.best.rise_s * rate_hz);
+    out.delay_power_significance =
+        std::sqrt(std::max(0.0, chi2_0 - out.best.chi2) / (scale * corr));
   } else {
     out.delay_low_s = out.delay_high_s = out.best.delay_s;
   }

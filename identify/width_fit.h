@@ -15,15 +15,18 @@
 // with bootstrap intervals that missed the truth.
 //
 // Model for tau in [0, max_delay + tail]:
-//     R(tau) = c + P_0 S(tau; sigma_0, tau_d) + P_1 S(tau - dt; sigma_1, tau_d)
+//     R(tau) = c + P_0 S(tau; sigma_0, tau_d) + P_1 S(tau - dt; sigma_1, tau_d) + P_n N(tau)
 // S the symmetric exponentially modified Gaussian, [E(tau) + E(-tau)] / 2 (E the EMG with rise
 // sigma and ring-down tau_d: an event's squared envelope correlated with itself), sigma_1 >=
-// sigma_0 (the delay jitters between passages). (c, P_0, P_1) are linear; dt is searched on a grid
+// sigma_0 (the delay jitters between passages); N a Gaussian of the noise's correlation time
+// (about 1 / band width: the noise correlates only with itself near tau = 0). (c, P_0, P_1, P_n)
+// are linear; dt is searched on a grid
 // from min_delay_s to max_delay_s with a few shapes, then every parameter is refined with Ceres.
 //
 // Standard errors per lag from the scatter between blocks (one per cage revolution), pooled over
 // +/- 2 lags. Interval: percentiles of dt over a bootstrap of the blocks (each resample averaged
-// and refitted). ceres::Covariance's standard error (independent lags) is reported beside it.
+// and refitted), widened to at least +/- t(0.95, n - 1) bootstrap standard deviations (with n
+// blocks: a bootstrap of 8-16 blocks is too narrow otherwise). ceres::Covariance's standard error (independent lags) is reported beside it.
 #pragma once
 
 #include <span>
@@ -43,6 +46,9 @@ struct WidthFitOptions {
   // rollers' impacts fall relative to one roller's (from the count's spin phases).
   std::vector<double> excluded_lags_s;
   double excluded_half_width_s = 0.4e-3;
+  // Correlation time of the band's noise (about 1 / band width; the Gaussian peak P_n at tau = 0
+  // takes it); 0: one sample (white).
+  double noise_correlation_s = 0.0;
   unsigned seed = 1;
 
   bool IsValid(std::string* error) const;
@@ -67,13 +73,15 @@ EnvelopeCorrelation CorrelateInZone(std::span<const double> se,
                                     int block_samples);
 
 struct EntryExitFit {
-  double offset = 0.0;          // c
-  double zero_lag_power = 0.0;  // P_0
-  double delay_power = 0.0;     // P_1
-  double delay_s = 0.0;         // dt
-  double rise_s = 0.0;          // sigma_0
-  double delay_rise_s = 0.0;    // sigma_1
-  double decay_s = 0.0;         // tau_d
+  double offset = 0.0;               // c
+  double zero_lag_power = 0.0;       // P_0
+  double delay_power = 0.0;          // P_1
+  double noise_power = 0.0;          // P_n: the noise's own peak around tau = 0
+  double noise_correlation_s = 0.0;  // its width
+  double delay_s = 0.0;              // dt
+  double rise_s = 0.0;               // sigma_0
+  double delay_rise_s = 0.0;         // sigma_1
+  double decay_s = 0.0;              // tau_d
   double chi2 = 0.0;
   std::vector<double> model;
 };
@@ -85,7 +93,8 @@ struct WidthFit {
   EntryExitFit best;
   double delay_standard_error_s = 0.0;           // ceres::Covariance (independent lags)
   double delay_low_s = 0.0, delay_high_s = 0.0;  // 90 % bootstrap interval
-  // P_1 over its bootstrap standard deviation: is there a second event at all?
+  // Is there a second event at all: sqrt of the chi2 gain over the fit without it, in units of
+  // the best fit's reduced chi2 and of the lags' correlation length (about 2 rise times).
   double delay_power_significance = 0.0;
   EnvelopeCorrelation correlation;
 };
