@@ -17,29 +17,25 @@
 namespace spallkit::identify {
 namespace {
 
-// Gauss-Hermite rule for E[f(X)], X ~ N(0, 1), 5 nodes.
-constexpr double kGhNode[5] = {
-    -2.8569700138728056, -1.3556261799742659, 0.0, 1.3556261799742659, 2.8569700138728056};
-constexpr double kGhWeight[5] = {0.011257411327720688,
-                                 0.22207592200561266,
-                                 0.5333333333333333,
-                                 0.22207592200561266,
-                                 0.011257411327720688};
+// Gauss-Hermite rule for E[f(X)], X ~ N(0, 1), 3 nodes (exact for polynomials to degree 5; the
+// smear is a small correction to a hump ~100 deg wide).
+constexpr double kGhNode[3] = {-1.7320508075688772, 0.0, 1.7320508075688772};
+constexpr double kGhWeight[3] = {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0};
 
+// The hump at x smoothed by a Gaussian of std `smear` (which also stands for the bin width: its
+// lower bound is 0.3 bin widths, the std of a uniform bin being 0.29).
 template <typename T>
-T Hump(const T& x, const T& p, const T& edge, const T& smear, const T& half, double bin_rad) {
+T Hump(const T& x, const T& p, const T& edge, const T& smear, const T& half, double /*bin_rad*/) {
   using std::cos;
   using std::exp;
   using std::log;
   const T cl = cos(half);
   T sum(0.0);
-  for (int q = 0; q < 5; ++q) {
-    for (double box : {-0.25, 0.25}) {
-      const T c = cos(x + smear * kGhNode[q] + T(box * bin_rad));
-      if (c > cl) {
-        const T log_q = T(10.0 / 9.0) * log((c - cl) / (T(1.0) - cl));  // ln of relative load
-        sum += 0.5 * kGhWeight[q] * exp(p * log_q) * (T(1.0) + edge * (T(1.0) - exp(log_q)));
-      }
+  for (int q = 0; q < 3; ++q) {
+    const T c = cos(x + smear * kGhNode[q]);
+    if (c > cl) {
+      const T log_q = T(10.0 / 9.0) * log((c - cl) / (T(1.0) - cl));  // ln of relative load
+      sum += kGhWeight[q] * exp(p * log_q) * (T(1.0) + edge * (T(1.0) - exp(log_q)));
     }
   }
   return sum;
@@ -186,7 +182,7 @@ HumpFit Refine(const CageAverage& avg, int z, const HumpFit& start, const CountF
   problem.AddResidualBlock(cost, nullptr, {shape, &theta0, &floor, amp.data()});
   problem.SetParameterLowerBound(shape, 0, kMinExponent);
   problem.SetParameterUpperBound(shape, 0, kMaxExponent);
-  problem.SetParameterLowerBound(shape, 1, kMinSmear);
+  problem.SetParameterLowerBound(shape, 1, std::max(kMinSmear, 0.3 * 2.0 * kPi / avg.bins()));
   problem.SetParameterUpperBound(shape, 1, std::max(kMinSmear * 1.01, o.max_smear_rad));
   if (f.shape.half_angle_fixed) {
     problem.SetManifold(shape, new ceres::SubsetManifold(4, {2}));
@@ -234,8 +230,11 @@ double SidebandChi2At(const SpinSidebands& sb,
   // Basis v[(j, m), q].
   // v = em * e^{-i j phi}, em[(m, q)] = M_m e^{i m (2 pi s_q / Z - theta_0 - delta)}.
   std::vector<std::complex<double>> ej(nj * k);
-  for (int j = 1; j <= nj; ++j)
-    for (int q = 0; q < k; ++q) ej[(j - 1) * k + q] = std::polar(1.0, -j * phase[q]);
+  for (int q = 0; q < k; ++q) {  // e^{-i j phi} by powers: one sine pair per roller
+    const std::complex<double> e1 = std::polar(1.0, -phase[q]);
+    std::complex<double> e = e1;
+    for (int j = 1; j <= nj; ++j, e *= e1) ej[(j - 1) * k + q] = e;
+  }
   std::vector<std::complex<double>> v(static_cast<size_t>(nj) * lines * k);
   for (int j = 1; j <= nj; ++j)
     for (int m = -sb.orders; m <= sb.orders; ++m)
@@ -397,7 +396,7 @@ double SidebandChi2(const SpinSidebands& sb,
     return chi2;
   }
   *parameters = 2 * sb.harmonics + 2 * (k - 1) + 1 + 1;
-  const int kDeltaSteps = 7, kPhaseSteps = k <= 3 ? 24 : 12;
+  const int kDeltaSteps = k <= 3 ? 7 : 3, kPhaseSteps = k <= 3 ? 24 : 12;
   const int kSweeps = k == 3 ? 2 : 1;
   const double range = 2.0 * kPi / z;  // +/- one slot
   // The hump's spectrum: feature A's shape of this configuration, or a plain q of the same half
@@ -409,7 +408,9 @@ double SidebandChi2(const SpinSidebands& sb,
   double best = std::numeric_limits<double>::infinity();
   double best_phase_chi2 = std::numeric_limits<double>::infinity();
   std::vector<double> best_phase(k, 0.0);
-  for (const HumpShape& shape : {f.shape, plain}) {
+  std::vector<HumpShape> shapes = {f.shape, plain};
+  if (k >= 3) shapes = {plain};  // three and more humps fix their shape poorly anyway
+  for (const HumpShape& shape : shapes) {
     const std::vector<double> mm = HumpFourier(shape, sb.orders);
     std::vector<std::complex<double>> em(static_cast<size_t>(2 * sb.orders + 1) * k);
     auto at = [&](double delta) {

@@ -13,8 +13,8 @@
 // p the exponent of the squared envelope's growth with load (fitted, 0.25..6), beta >= 0 (fitted,
 // <= 20) the extra strength of impacts near the load zone's edges (spallkit's simulated spalls
 // strike 2-3x harder at +/- 40 deg than on the load line: the roller falls further before the
-// lighter load catches it), smoothed by the bin width and a Gaussian of std sigma_s (cage-speed
-// jitter; fitted, 0.01 rad..max_smear_rad).
+// lighter load catches it), smoothed by a Gaussian of std sigma_s (cage-speed jitter and the bin
+// width; fitted, 0.3 bin widths..max_smear_rad; 3-point Gauss-Hermite).
 //
 // Feature B, line (j, m) of SpinSidebands:
 //     S_jm = p_j M_m e^{-i m (theta_0 + delta)} sum_k a_k e^{-i j phi_k} e^{i m 2 pi s_k / Z},

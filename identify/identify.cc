@@ -201,6 +201,14 @@ Identification Identify(const Record& record,
     id.reasons.push_back(depth_reason);
     return id;
   };
+  if (!id.count_identifiable) {
+    // Other defective rollers' impacts fall at lags the width fit would take for an entry; only a
+    // known configuration (its spin phases) says which lags to leave out.
+    width_reason =
+        "width: not identifiable (needs the count: other rollers' impacts would pass "
+        "for entry events)";
+    return finish();
+  }
   if (!(wo.max_delay_s > wo.min_delay_s)) {
     width_reason = "width: not identifiable (no delay range at this speed and sample rate)";
     return finish();
@@ -231,10 +239,8 @@ Identification Identify(const Record& record,
   if (!wf.usable) {
     why = "width: not identifiable (" + wf.message + ")";
   } else if (wf.delay_power_significance < options.min_delay_significance) {
-    why =
-        "width: not identifiable (no entry event resolved before the impacts: second-event "
-        "power " +
-        Fmt("%.1f", wf.delay_power_significance) + " standard deviations)";
+    why = "width: not identifiable (no entry event resolved before the impacts: significance " +
+          Fmt("%.1f", wf.delay_power_significance) + ")";
   } else if (wf.best.delay_power > options.max_entry_power_ratio * wf.best.zero_lag_power) {
     why = "width: not identifiable (the second event at " + Fmt("%.2f", wf.best.delay_s * 1e3) +
           " ms is as strong as the impacts themselves: another roller's impacts, not an entry)";

@@ -127,7 +127,8 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
                  const Bounds& bd,
                  const EntryExitFit* start,
                  int grid,
-                 double* delay_se) {
+                 double* delay_se,
+                 int max_iterations = 50) {
   EntryExitFit best;
   best.chi2 = std::numeric_limits<double>::infinity();
   if (start) {
@@ -180,7 +181,7 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
   problem.SetParameterLowerBound(shape, 2, 0.0);
   problem.SetParameterUpperBound(shape, 2, bd.max_rise);
   ceres::Solver::Options so;
-  so.max_num_iterations = 50;
+  so.max_num_iterations = max_iterations;
   so.linear_solver_type = ceres::DENSE_QR;
   so.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
@@ -214,7 +215,10 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
 }
 
 // chi2 of the best fit without the second event (P_1 = 0, the rest refitted from `best`).
-double NullChi2(const EnvelopeCorrelation& r, int lags, const Bounds& bd, const EntryExitFit& best) {
+double NullChi2(const EnvelopeCorrelation& r,
+                int lags,
+                const Bounds& bd,
+                const EntryExitFit& best) {
   double lin[4] = {best.offset, best.zero_lag_power, 0.0, best.noise_power};
   double delay[1] = {best.delay_s};
   double shape[3] = {best.rise_s, best.decay_s, std::max(0.0, best.delay_rise_s - best.rise_s)};
@@ -393,7 +397,7 @@ WidthFit FitEntryExit(std::span<const double> se,
     Summarise(&resample, use);
     ExcludeLags(&resample, o);
     // From the best fit and from the grid's best: a resample may sit in another basin.
-    EntryExitFit f = Fit(resample, lags, bd, &out.best, o.delay_grid, nullptr);
+    EntryExitFit f = Fit(resample, lags, bd, &out.best, o.delay_grid, nullptr, 20);
     delays.push_back(f.delay_s);
     powers.push_back(f.delay_power);
   }

@@ -26,7 +26,8 @@
 // Standard errors per lag from the scatter between blocks (one per cage revolution), pooled over
 // +/- 2 lags. Interval: percentiles of dt over a bootstrap of the blocks (each resample averaged
 // and refitted), widened to at least +/- t(0.95, n - 1) bootstrap standard deviations (with n
-// blocks: a bootstrap of 8-16 blocks is too narrow otherwise). ceres::Covariance's standard error (independent lags) is reported beside it.
+// blocks: a bootstrap of 8-16 blocks is too narrow otherwise). ceres::Covariance's standard error
+// (independent lags) is reported beside it.
 #pragma once
 
 #include <span>
