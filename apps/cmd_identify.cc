@@ -1,0 +1,93 @@
+// spall identify: number, cage positions and width of spalled rollers from a vibration record
+// (docs/IDENTIFY.md). Diagnoses the record first (docs/DIAGNOSIS.md), then identifies from that.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "apps/bearing_options.h"
+#include "apps/command.h"
+#include "core/error.h"
+#include "core/record_io.h"
+#include "dsp/diagnose.h"
+#include "identify/identify.h"
+#include "identify/identify_plots.h"
+
+namespace {
+
+struct Opts {
+  std::string record;
+  spallkit::apps::BearingOptions bearing;
+  double rpm = 0.0;
+  double fs = 0.0;
+  CLI::Option* fs_option = nullptr;
+  std::string channel;
+  double load_n = 0.0;
+  CLI::Option* load_option = nullptr;
+  bool json = false;
+  std::string plot_dir;
+  int max_count = -1;
+};
+
+int Run(const Opts& o) {
+  using namespace spallkit;
+  if (!(o.rpm > 0.0) || !std::isfinite(o.rpm))
+    throw InputError("--rpm must be > 0 (got " + std::to_string(o.rpm) + ")");
+  if (o.fs_option && o.fs_option->count() > 0 && (!(o.fs > 0.0) || !std::isfinite(o.fs)))
+    throw InputError("--fs must be > 0 Hz (got " + std::to_string(o.fs) + ")");
+  if (o.load_option && o.load_option->count() > 0 &&
+      (!(o.load_n > 0.0) || !std::isfinite(o.load_n)))
+    throw InputError("--load-n must be > 0 N (got " + std::to_string(o.load_n) + ")");
+  const BearingGeometry g = o.bearing.Geometry();
+
+  RecordOptions ro;
+  ro.sample_rate_hz = o.fs;
+  ro.channel = o.channel;
+  const Record record = ReadRecord(o.record, ro);
+
+  identify::IdentifyOptions io;
+  if (o.load_option && o.load_option->count() > 0) io.radial_load_n = o.load_n;
+  if (o.max_count >= 0) io.count.max_count = o.max_count;
+  std::string error;
+  if (!io.IsValid(&error)) throw InputError(error);
+  dsp::DiagnoseOptions dopt;
+  dopt.kurtogram_map = !o.plot_dir.empty();
+  const dsp::Diagnosis d = dsp::Diagnose(record, g, o.rpm / 60.0, dopt);
+  const identify::Identification id = identify::Identify(record, g, o.rpm / 60.0, d, io);
+  if (!o.plot_dir.empty()) identify::WriteIdentificationPlots(id, o.plot_dir);
+  if (o.json) {
+    std::printf("%s\n", id.ToJson(2).c_str());
+  } else {
+    std::printf("record: %s (%zu samples, %g Hz)\n",
+                record.source.c_str(),
+                record.samples.size(),
+                record.sample_rate_hz);
+    std::printf("%s", id.BriefReport().c_str());
+    if (!o.plot_dir.empty())
+      std::printf("plots: %s/{cage_average,sidebands,delay}.png\n", o.plot_dir.c_str());
+  }
+  return 0;
+}
+
+spallkit::apps::Register reg(
+    "identify",
+    "Number, cage positions and width of spalled rollers from a vibration record",
+    [](CLI::App& sub) {
+      auto o = std::make_shared<Opts>();
+      sub.add_option("record", o->record, "record file (.csv/.txt or .h5)")->required();
+      o->bearing.Add(sub);
+      sub.add_option("--rpm", o->rpm, "nominal shaft speed, rpm")->required();
+      o->fs_option = sub.add_option("--fs", o->fs, "sample rate, Hz (overrides the file)");
+      sub.add_option("--channel", o->channel, "column name / 0-based data column, or HDF5 path");
+      o->load_option = sub.add_option(
+          "--load-n", o->load_n, "radial load, N (fixes the load zone; else it is fitted)");
+      sub.add_option("--max-count",
+                     o->max_count,
+                     "largest number of defective rollers tried (default: every roller)");
+      sub.add_flag("--json", o->json, "print one JSON object instead of the report");
+      sub.add_option(
+          "--plot-dir", o->plot_dir, "write cage_average.png, sidebands.png, delay.png there");
+      return [o] { return Run(*o); };
+    });
+
+}  // namespace

@@ -1,0 +1,379 @@
+#include "identify/identify.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/constants.h"
+#include "core/error.h"
+#include "dsp/envelope.h"
+#include "identify/line_dft.h"
+#include "identify/load_zone.h"
+#include "identify/smooth_envelope.h"
+
+namespace spallkit::identify {
+namespace {
+
+std::string Fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+// Chord of a spall crossed in dt at spin rate f_s on a roller of diameter d.
+double ChordOf(double dt, double spin_hz, double d) {
+  const double half_angle = std::clamp(kPi * spin_hz * dt, 0.0, 0.5 * kPi);
+  return d * std::sin(half_angle);
+}
+
+}  // namespace
+
+bool IdentifyOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (radial_load_n && !(*radial_load_n > 0 && std::isfinite(*radial_load_n)))
+    return fail("identify: radial load must be > 0 N");
+  if (!(diametral_clearance_m >= 0)) return fail("identify: diametral clearance must be >= 0");
+  if (!(roller_length_m >= 0)) return fail("identify: roller length must be >= 0");
+  if (cage_bins < 12) return fail("identify: cage_bins must be >= 12");
+  if (min_cage_revolutions < 2) return fail("identify: min_cage_revolutions must be >= 2");
+  if (sideband_harmonics < 0 || sideband_orders < 1)
+    return fail("identify: sideband_harmonics must be >= 0 and sideband_orders >= 1");
+  if (!(min_count_probability > 0 && min_count_probability <= 1))
+    return fail("identify: min_count_probability must be in (0, 1]");
+  if (!(width_band_min_half_width_hz > 0))
+    return fail("identify: width_band_min_half_width_hz must be > 0");
+  if (!(width_calibration_scale > 0)) return fail("identify: width calibration scale must be > 0");
+  if (!(min_delay_significance >= 0)) return fail("identify: min_delay_significance must be >= 0");
+  if (!(max_entry_power_ratio > 0)) return fail("identify: max_entry_power_ratio must be > 0");
+  if (!(max_width_relative_half_interval > 0))
+    return fail("identify: max_width_relative_half_interval must be > 0");
+  return count.IsValid(error) && width.IsValid(error);
+}
+
+Identification Identify(const Record& record,
+                        const BearingGeometry& bearing,
+                        double shaft_hz,
+                        const dsp::Diagnosis& diagnosis,
+                        const IdentifyOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError(error);
+  bearing.Validate();
+  if (!(shaft_hz > 0)) throw InputError("identify: shaft speed must be > 0");
+  if (diagnosis.samples != static_cast<int>(record.samples.size()) ||
+      std::abs(diagnosis.sample_rate_hz - record.sample_rate_hz) > 1e-9 * record.sample_rate_hz)
+    throw InputError(
+        "identify: the diagnosis is of another record (" + std::to_string(diagnosis.samples) +
+        " samples at " + Fmt("%g", diagnosis.sample_rate_hz) + " Hz, the record has " +
+        std::to_string(record.samples.size()) + " at " + Fmt("%g", record.sample_rate_hz) + " Hz)");
+  Identification id;
+  id.diagnosis = diagnosis;
+  id.options = options;
+  const std::string depth_reason =
+      "depth: not identifiable (the response does not depend on it: docs/IDENTIFY.md)";
+
+  const std::string& verdict = diagnosis.verdict;
+  if (verdict != "rolling_element") {
+    if (verdict == "outer_race" || verdict == "inner_race")
+      id.reasons.push_back("race fault (" + verdict +
+                           "): its impacts carry no roller count and no roller spall width");
+    else
+      id.reasons.push_back("no roller signature (diagnosis verdict: " + verdict +
+                           "): count and width not identifiable");
+    id.reasons.push_back(depth_reason);
+    return id;
+  }
+  id.roller_signature = true;
+
+  const double fs = record.sample_rate_hz;
+  const double duration = record.duration_s();
+  const double d = bearing.element_diameter_m;
+  const int z = bearing.num_elements;
+  const double f_b0 = diagnosis.measured_f_b_hz.value_or(diagnosis.kinematics.f_b_hz);
+  const double f_c0 = diagnosis.measured_f_c_hz.value_or(diagnosis.kinematics.cage_hz * f_b0 /
+                                                         diagnosis.kinematics.f_b_hz);
+
+  // Squared envelope in the diagnosis band, alias-free up to the sidebands' highest line.
+  dsp::EnvelopeAnalyzer analyzer(record.samples, fs);
+  const double needed =
+      1.2 * (options.sideband_harmonics * 0.5 * f_b0 + (options.sideband_orders + 1) * f_c0);
+  double rate = 0.0;
+  const std::vector<double> se =
+      analyzer.SquaredEnvelope(diagnosis.band, std::max(diagnosis.band.width_hz(), needed), &rate);
+  const double half_bin = 0.5 / duration;
+  id.cage_hz = RefineRate(
+      se, rate, f_c0, diagnosis.measured_f_c_hz ? half_bin : std::max(half_bin, 0.02 * f_c0));
+  id.spin_hz = RefineRate(se, rate, 0.5 * f_b0, half_bin, 4);
+  id.surface_speed_m_s = kPi * d * id.spin_hz;
+  id.cage_revolutions = duration * id.cage_hz;
+
+  // Count and positions.
+  CountFitOptions count = options.count;
+  if (options.radial_load_n) {
+    const double length = options.roller_length_m > 0 ? options.roller_length_m : 1.4 * d;
+    const LoadZone zone = SolveLoadZone(
+        bearing, *options.radial_load_n, shaft_hz, options.diametral_clearance_m, length);
+    count.load_zone_half_angle_rad = zone.half_angle_rad;
+    id.load_zone_from_load = true;
+  }
+  std::string count_reason, width_reason;
+  const bool enough_turns = id.cage_revolutions >= options.min_cage_revolutions;
+  if (!enough_turns) {
+    count_reason =
+        ("count: not identifiable (the record holds " + Fmt("%.1f", id.cage_revolutions) +
+         " cage revolutions, " + std::to_string(options.min_cage_revolutions) + " needed)");
+  } else {
+    const int samples_per_turn = static_cast<int>(rate / id.cage_hz);
+    id.cage_average =
+        AverageOverCage(se, rate, id.cage_hz, std::min(options.cage_bins, samples_per_turn));
+    id.sidebands = MeasureSpinSidebands(
+        se, rate, id.spin_hz, id.cage_hz, options.sideband_harmonics, options.sideband_orders);
+    id.count_fit = FitRollerCount(id.cage_average, &id.sidebands, z, count);
+    const CountFit& cf = id.count_fit;
+    id.probabilities = cf.probability;
+    id.probabilities_cage = cf.probability_cage;
+    if (cf.sideband_lines > 0) id.probabilities_sidebands = cf.probability_sidebands;
+    const int k = cf.MostProbable();
+    const HumpFit& best = cf.best[k];
+    id.load_zone_half_angle_rad = k > 0 ? best.shape.half_angle_rad : 0.0;
+    auto argmax = [](const std::vector<double>& p) {
+      return static_cast<int>(std::max_element(p.begin(), p.end()) - p.begin());
+    };
+    const bool disagree =
+        cf.sideband_lines > 0 && argmax(cf.probability_cage) != argmax(cf.probability_sidebands) &&
+        *std::max_element(cf.probability_cage.begin(), cf.probability_cage.end()) > 0.9 &&
+        *std::max_element(cf.probability_sidebands.begin(), cf.probability_sidebands.end()) > 0.9;
+    if (k == 0) {
+      count_reason =
+          ("count: not identifiable (no load-zone hump in the cage-synchronous "
+           "average: the impacts are not load-modulated)");
+    } else if (cf.probability[k] < options.min_count_probability) {
+      count_reason = ("count: uncertain (most probable " + std::to_string(k) +
+                      " with P = " + Fmt("%.2f", cf.probability[k]) + ")");
+    } else if (disagree) {
+      count_reason = ("count: not identifiable (cage average says " +
+                      std::to_string(argmax(cf.probability_cage)) + ", sidebands say " +
+                      std::to_string(argmax(cf.probability_sidebands)) + ")");
+    } else {
+      id.count_identifiable = true;
+      id.count = k;
+      id.position_probability = cf.configuration_probability[k];
+      const double amax = *std::max_element(best.amplitudes.begin(), best.amplitudes.end());
+      for (size_t q = 0; q < best.slots.size(); ++q) {
+        id.positions_deg.push_back(360.0 * best.slots[q] / z);
+        id.relative_strengths.push_back(amax > 0 ? best.amplitudes[q] / amax : 0.0);
+      }
+    }
+  }
+
+  // Width.
+  const double c = diagnosis.band.center_hz();
+  const double w = std::max(diagnosis.band.width_hz(), options.width_band_min_half_width_hz);
+  id.width_band_low_hz = std::max(50.0, c - w);
+  id.width_band_high_hz = std::min(0.49 * fs, c + w);
+  const std::vector<double> sew =
+      SmoothBandSquaredEnvelope(record.samples, fs, id.width_band_low_hz, id.width_band_high_hz);
+  std::vector<char> zone;
+  if (id.count_identifiable) {  // the load zone of the fitted humps
+    const HumpFit& best = id.count_fit.best[id.count];
+    const auto [lo, hi] = std::minmax_element(best.model.begin(), best.model.end());
+    const double level = *lo + 0.3 * (*hi - *lo);
+    const int bins = static_cast<int>(best.model.size());
+    zone.resize(sew.size());
+    for (size_t i = 0; i < sew.size(); ++i) {
+      double turns = i / fs * id.cage_hz;
+      turns -= std::floor(turns);
+      zone[i] = best.model[std::min(bins - 1, static_cast<int>(turns * bins))] > level;
+    }
+  }
+  WidthFitOptions wo = options.width;
+  const double chord_max = 2.0 * std::asin(0.8) / (2.0 * kPi * id.spin_hz);  // w = 0.8 d
+  wo.max_delay_s = std::min(
+      0.4 / f_b0, options.width_calibration_scale * chord_max + options.width_calibration_offset_s);
+  wo.min_delay_s = std::max(wo.min_delay_s, 2.0 / fs);
+  auto finish = [&]() {
+    for (const std::string* r : {&count_reason, &width_reason})
+      if (!r->empty()) id.reasons.push_back(*r);
+    id.reasons.push_back(depth_reason);
+    return id;
+  };
+  if (!id.count_identifiable) {
+    // Other defective rollers' impacts fall at lags the width fit would take for an entry; only a
+    // known configuration (its spin phases) says which lags to leave out.
+    width_reason =
+        "width: not identifiable (needs the count: other rollers' impacts would pass "
+        "for entry events)";
+    return finish();
+  }
+  if (!(wo.max_delay_s > wo.min_delay_s)) {
+    width_reason = "width: not identifiable (no delay range at this speed and sample rate)";
+    return finish();
+  }
+  if (id.count_identifiable && id.count >= 2) {
+    // Other rollers' impacts fall at fixed lags from one roller's: leave those lags out.
+    const std::vector<double>& ph = id.count_fit.best[id.count].spin_phase_rad;
+    const double half_turn = 0.5 / id.spin_hz;
+    for (size_t a = 0; a < ph.size(); ++a)
+      for (size_t b = a + 1; b < ph.size(); ++b) {
+        double lag = std::fmod((ph[b] - ph[a]) / (2.0 * kPi * id.spin_hz), half_turn);
+        if (lag < 0) lag += half_turn;
+        wo.excluded_lags_s.push_back(lag);
+        wo.excluded_lags_s.push_back(half_turn - lag);
+      }
+  }
+  wo.noise_correlation_s = 1.0 / (id.width_band_high_hz - id.width_band_low_hz);
+  const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
+  id.width_fit = FitEntryExit(sew, fs, zone, block, wo);
+  const WidthFit& wf = id.width_fit;
+  auto to_width = [&](double dt) {
+    return ChordOf(
+        (dt - options.width_calibration_offset_s) / options.width_calibration_scale, id.spin_hz, d);
+  };
+  const double dt_res = std::max(2.0 / fs, 2.0 * wf.best.rise_s);
+  id.width_resolution_m = to_width(dt_res);
+  std::string& why = width_reason;
+  if (!wf.usable) {
+    why = "width: not identifiable (" + wf.message + ")";
+  } else if (wf.delay_power_significance < options.min_delay_significance) {
+    why = "width: not identifiable (no entry event resolved before the impacts: significance " +
+          Fmt("%.1f", wf.delay_power_significance) + ")";
+  } else if (wf.best.delay_power > options.max_entry_power_ratio * wf.best.zero_lag_power) {
+    why = "width: not identifiable (the second event at " + Fmt("%.2f", wf.best.delay_s * 1e3) +
+          " ms is as strong as the impacts themselves: another roller's impacts, not an entry)";
+  } else if (wf.delay_high_s < dt_res) {
+    why = "width: below what the record resolves (< " + Fmt("%.2f", id.width_resolution_m * 1e3) +
+          " mm)";
+  } else if (wf.delay_low_s < dt_res) {
+    why =
+        "width: not identifiable (the entry-exit delay is not resolved from the impact's own "
+        "ring-down: the interval reaches below " +
+        Fmt("%.2f", id.width_resolution_m * 1e3) + " mm)";
+  } else {
+    id.width_m = to_width(wf.best.delay_s);
+    id.width_low_m = to_width(wf.delay_low_s);
+    id.width_high_m = to_width(wf.delay_high_s);
+    const double half = 0.5 * (id.width_high_m - id.width_low_m);
+    if (half > options.max_width_relative_half_interval * id.width_m) {
+      why = "width: not identifiable (90 % interval " + Fmt("%.2f", id.width_low_m * 1e3) + "-" +
+            Fmt("%.2f", id.width_high_m * 1e3) + " mm is too wide)";
+      id.width_m = id.width_low_m = id.width_high_m = 0.0;
+    } else {
+      id.width_identifiable = true;
+    }
+  }
+  return finish();
+}
+
+std::string Identification::BriefReport() const {
+  std::ostringstream os;
+  os << "diagnosis: " << diagnosis.verdict << " (band " << Fmt("%.0f", diagnosis.band.low_hz) << "-"
+     << Fmt("%.0f", diagnosis.band.high_hz) << " Hz)\n";
+  if (roller_signature)
+    os << "rates: f_c " << Fmt("%.4f", cage_hz) << " Hz, f_b " << Fmt("%.3f", 2.0 * spin_hz)
+       << " Hz (refined), " << Fmt("%.1f", cage_revolutions) << " cage revolutions\n";
+  if (count_identifiable) {
+    os << "defective rollers: " << count << " (P = " << Fmt("%.3f", probabilities[count])
+       << "; cage average " << Fmt("%.3f", probabilities_cage[count]);
+    if (!probabilities_sidebands.empty())
+      os << ", sidebands " << Fmt("%.3f", probabilities_sidebands[count]);
+    os << ")\n  positions in the cage:";
+    for (double p : positions_deg) os << " " << Fmt("%.1f", p);
+    os << " deg (P = " << Fmt("%.2f", position_probability) << ")\n";
+  } else {
+    os << "defective rollers: not identified\n";
+  }
+  if (!probabilities.empty()) {
+    os << "  P(K):";
+    for (size_t k = 0; k < probabilities.size() && k <= 5; ++k)
+      os << " " << k << ":" << Fmt("%.3g", probabilities[k]);
+    os << "  (fit chi2 scale " << Fmt("%.2f", count_fit.chi2_scale) << " / "
+       << Fmt("%.2f", count_fit.chi2_scale_sidebands) << ")\n";
+  }
+  if (width_identifiable)
+    os << "width: " << Fmt("%.2f", width_m * 1e3) << " mm (90 % interval "
+       << Fmt("%.2f", width_low_m * 1e3) << "-" << Fmt("%.2f", width_high_m * 1e3)
+       << " mm; entry-exit delay " << Fmt("%.3f", width_fit.best.delay_s * 1e3) << " ms)\n";
+  else
+    os << "width: not identified\n";
+  for (const auto& r : reasons) os << "  " << r << "\n";
+  return os.str();
+}
+
+std::string Identification::ToJson(int indent) const {
+  using nlohmann::ordered_json;
+  auto probs = [](const std::vector<double>& p) {
+    ordered_json j = ordered_json::object();
+    for (size_t k = 0; k < p.size(); ++k) j[std::to_string(k)] = p[k];
+    return p.empty() ? ordered_json(nullptr) : j;
+  };
+  ordered_json j;
+  ordered_json dr;
+  dr["count"] = count_identifiable ? ordered_json(count) : ordered_json(nullptr);
+  dr["probabilities"] = probs(probabilities);
+  dr["probabilities_cage_average"] = probs(probabilities_cage);
+  dr["probabilities_sidebands"] = probs(probabilities_sidebands);
+  dr["positions_deg"] = count_identifiable ? ordered_json(positions_deg) : ordered_json(nullptr);
+  dr["position_probability"] =
+      count_identifiable ? ordered_json(position_probability) : ordered_json(nullptr);
+  dr["relative_strengths"] =
+      count_identifiable ? ordered_json(relative_strengths) : ordered_json(nullptr);
+  j["defective_rollers"] = dr;
+  if (width_identifiable) {
+    ordered_json w;
+    w["estimate"] = width_m * 1e3;
+    w["interval_90"] = {width_low_m * 1e3, width_high_m * 1e3};
+    j["width_mm"] = w;
+  } else {
+    j["width_mm"] = nullptr;
+  }
+  ordered_json ident;
+  ident["width"] = width_identifiable;
+  ident["count"] = count_identifiable;
+  ident["depth"] = depth_identifiable;
+  ident["reasons"] = reasons;
+  j["identifiable"] = ident;
+  j["diagnosis"] = ordered_json::parse(diagnosis.ToJson(0));
+  ordered_json fit;
+  fit["roller_signature"] = roller_signature;
+  if (roller_signature) {
+    fit["cage_hz"] = cage_hz;
+    fit["f_b_hz"] = 2.0 * spin_hz;
+    fit["surface_speed_m_s"] = surface_speed_m_s;
+    fit["cage_revolutions"] = cage_revolutions;
+    fit["load_zone_half_angle_deg"] = load_zone_half_angle_rad * 180.0 / kPi;
+    fit["load_zone_from_load"] = load_zone_from_load;
+    if (!count_fit.best.empty()) {
+      const HumpFit& b = count_fit.best[count_fit.MostProbable()];
+      fit["hump"] = {{"exponent", b.shape.exponent},
+                     {"edge_gain", b.shape.edge_gain},
+                     {"smear_deg", b.shape.smear_rad * 180.0 / kPi},
+                     {"chi2_cage_average", b.chi2},
+                     {"chi2_sidebands", b.chi2_sidebands}};
+      fit["cage_bins"] = count_fit.bins;
+      fit["sideband_lines"] = count_fit.sideband_lines;
+      fit["chi2_scale_cage_average"] = count_fit.chi2_scale;
+      fit["chi2_scale_sidebands"] = count_fit.chi2_scale_sidebands;
+    }
+    fit["width_band_hz"] = {width_band_low_hz, width_band_high_hz};
+    if (width_fit.usable) {
+      fit["delay_ms"] = {
+          {"estimate", width_fit.best.delay_s * 1e3},
+          {"interval_90", {width_fit.delay_low_s * 1e3, width_fit.delay_high_s * 1e3}},
+          {"standard_error_covariance", width_fit.delay_standard_error_s * 1e3},
+          {"second_event_significance", width_fit.delay_power_significance},
+          {"rise_ms", width_fit.best.rise_s * 1e3},
+          {"decay_ms", width_fit.best.decay_s * 1e3}};
+    }
+    fit["width_resolution_mm"] = width_resolution_m * 1e3;
+    fit["width_calibration"] = {{"scale", options.width_calibration_scale},
+                                {"offset_ms", options.width_calibration_offset_s * 1e3}};
+  }
+  j["fit"] = fit;
+  return j.dump(indent);
+}
+
+}  // namespace spallkit::identify

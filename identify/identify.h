@@ -1,0 +1,119 @@
+// Identification of a roller spall from a vibration record: how many rollers are defective, where
+// they sit in the cage, and how wide the spall is, each with its uncertainty, or the reason the
+// record cannot say (docs/IDENTIFY.md).
+//
+//   Record + Diagnosis (dsp/diagnose.h: verdict, band, measured f_b and f_c)
+//     -> refusals: no roller signature (verdict not rolling_element) / a race fault
+//     -> squared envelope in the diagnosis band; f_c and f_s = f_b / 2 refined to a fraction of a
+//        bin (identify/line_dft.h)
+//     -> count and positions: cage-synchronous average + f_c sideband pattern, K = 0..Z with Ceres,
+//        P(K) from the evidence (identify/count_fit.h)
+//     -> width: load-zone autocorrelation of a smooth wide-band squared envelope, entry-exit delay
+//        dt with a bootstrap interval (identify/width_fit.h), w = d sin(pi f_s (dt - offset) /
+//        scale) with the calibration below
+//     -> depth: never (the response does not depend on it; docs/IDENTIFY.md).
+// A library user does what `spall identify` does in a few lines:
+//     Record r = ReadRecord(path, {});
+//     BearingGeometry g = CatalogBearing("N205EM");
+//     dsp::Diagnosis d = dsp::Diagnose(r, g, rpm / 60.0);
+//     identify::IdentifyOptions o;  o.radial_load_n = 10000.0;
+//     identify::Identification id = identify::Identify(r, g, rpm / 60.0, d, o);
+//     std::cout << id.BriefReport();   // or id.ToJson()
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/bearing.h"
+#include "core/record.h"
+#include "dsp/diagnose.h"
+#include "identify/cage_average.h"
+#include "identify/count_fit.h"
+#include "identify/spin_sidebands.h"
+#include "identify/width_fit.h"
+
+namespace spallkit::identify {
+
+struct IdentifyOptions {
+  // Radial load (N): fixes the load zone's half angle (Harris-Jones). Unset: fitted.
+  std::optional<double> radial_load_n;
+  double diametral_clearance_m = 20e-6;  // for the load zone (N205EM's default; docs/SCENE.md)
+  double roller_length_m = 0.0;          // for the load zone; 0: 1.4 x element diameter
+  int cage_bins = 72;
+  int min_cage_revolutions = 4;
+  int sideband_harmonics = 4;  // spin harmonics j of feature B
+  int sideband_orders = 4;     // f_c orders m of feature B
+  CountFitOptions count;
+  // The count is reported when its probability reaches this; otherwise it is "uncertain".
+  double min_count_probability = 0.5;
+  WidthFitOptions width;
+  // Width band: Hann window centred on the diagnosis band, +/- max(its width, this) (Hz).
+  double width_band_min_half_width_hz = 2000.0;
+  // Calibration of the measured delay against the geometric one, dt = scale dt_chord + offset
+  // (docs/IDENTIFY.md says how it was obtained).
+  double width_calibration_scale = 1.0;
+  double width_calibration_offset_s = 0.0;
+  // Width reported when the second event's power is this many bootstrap standard deviations
+  // above zero and the 90 % interval's half width is at most this fraction of the estimate.
+  double min_delay_significance = 2.0;
+  // An entry (an unloading) is weaker than the impact: a "second event" whose correlation power
+  // exceeds this fraction of the zero-lag power is another roller's impact train, not an entry.
+  double max_entry_power_ratio = 0.5;
+  double max_width_relative_half_interval = 0.3;
+
+  bool IsValid(std::string* error) const;
+};
+
+struct Identification {
+  // What the record supports; the reasons say why not, one line each.
+  bool roller_signature = false;
+  bool count_identifiable = false;
+  bool width_identifiable = false;
+  bool depth_identifiable = false;
+  std::vector<std::string> reasons;
+
+  // Count and positions (when count_identifiable).
+  int count = 0;
+  std::vector<double> probabilities;            // P(K), K = 0..max_count (empty: not computed)
+  std::vector<double> probabilities_cage;       // feature A alone
+  std::vector<double> probabilities_sidebands;  // feature B alone (empty when not used)
+  std::vector<double> positions_deg;       // defective rollers in the cage, from the first, in the
+                                           // direction of rotation (canonical: smallest arc)
+  std::vector<double> relative_strengths;  // their hump heights / the largest
+  double position_probability = 0.0;       // of these slots among the configurations of `count`
+
+  // Width (when width_identifiable).
+  double width_m = 0.0, width_low_m = 0.0, width_high_m = 0.0;  // estimate and 90 % interval
+  double width_resolution_m = 0.0;  // the narrowest width the record resolves
+
+  // What the fits used.
+  double cage_hz = 0.0, spin_hz = 0.0;  // refined f_c and f_s (f_b = 2 f_s)
+  double surface_speed_m_s = 0.0;       // pi d f_s
+  double cage_revolutions = 0.0;
+  double load_zone_half_angle_rad = 0.0;
+  bool load_zone_from_load = false;
+  double width_band_low_hz = 0.0, width_band_high_hz = 0.0;
+  CageAverage cage_average;
+  SpinSidebands sidebands;
+  CountFit count_fit;
+  WidthFit width_fit;
+  dsp::Diagnosis diagnosis;
+  IdentifyOptions options;
+
+  // A short report: count with its probability, width with its interval, positions, fit
+  // quality, what could not be identified and why.
+  std::string BriefReport() const;
+  // One JSON object; keys documented in docs/IDENTIFY.md.
+  std::string ToJson(int indent = 2) const;
+};
+
+// Identifies from a diagnosis of the same record. Throws InputError for invalid options or a
+// record/diagnosis mismatch (sample rate, length).
+Identification Identify(const Record& record,
+                        const BearingGeometry& bearing,
+                        double shaft_hz,
+                        const dsp::Diagnosis& diagnosis,
+                        const IdentifyOptions& options = {});
+
+}  // namespace spallkit::identify

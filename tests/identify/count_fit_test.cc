@@ -1,0 +1,123 @@
+// Number and positions of defective rollers on synthetic records with known answers, and the
+// sideband feature's model on its own.
+#include "identify/count_fit.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/constants.h"
+#include "dsp/envelope.h"
+#include "identify/load_zone.h"
+#include "tests/identify/identify_test_records.h"
+
+namespace spallkit::identify {
+namespace {
+
+using spallkit::testing::IdentifyRecord;
+using spallkit::testing::RollerRecordSpec;
+
+// One spall, 10 dB in the resonance band, 1 s at 1200 rpm (8 cage revolutions).
+TEST(CountFit, OneDefectiveRoller) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 10, {{0, 1.38, 0}}));
+  const Identification id = IdentifyRecord(r, 1200, 10000);
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  EXPECT_EQ(id.count, 1);
+  EXPECT_GT(id.probabilities[1], 0.9);
+  EXPECT_EQ(id.positions_deg, (std::vector<double>{0.0}));
+}
+
+// Two spalls four slots apart: count 2, positions 0 and 4 x 360/13 = 110.8 deg.
+TEST(CountFit, TwoRollersFourSlotsApart) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 10, {{0}, {4, 1.38, 120}}));
+  const Identification id = IdentifyRecord(r, 1200, 10000);
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  EXPECT_EQ(id.count, 2);
+  ASSERT_EQ(id.positions_deg.size(), 2u);
+  EXPECT_NEAR(id.positions_deg[1], 4 * 360.0 / 13, 1e-9);
+}
+
+// Adjacent rollers: their load-zone humps overlap (27.7 deg apart, each ~140 deg wide) and the
+// cage average alone cannot tell one from two; the sideband pattern (different spin phases) does.
+TEST(CountFit, AdjacentRollersNeedTheSidebands) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 10, {{0}, {1, 1.38, 120}}));
+  const Identification id = IdentifyRecord(r, 1200, 10000);
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  EXPECT_EQ(id.count, 2);
+  EXPECT_GT(id.probabilities_sidebands[2], 0.9);
+  EXPECT_LT(id.probabilities_cage[2], 0.5);  // the average alone prefers one wide hump
+  EXPECT_NEAR(id.positions_deg[1], 360.0 / 13, 1e-9);
+}
+
+// Three rollers of different widths at slots 0, 3, 7 (canonical form {0, 3, 7}: its mirror image
+// {0, 4, 7} is another configuration, so this also checks the direction of rotation).
+TEST(CountFit, ThreeRollersAndTheirOrder) {
+  const Record r =
+      MakeSyntheticRecord(RollerRecordSpec(1200, 10, {{0, 1.38, 0}, {3, 1.0, 60}, {7, 2.0, 200}}));
+  const Identification id = IdentifyRecord(r, 1200, 10000);
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  EXPECT_EQ(id.count, 3);
+  ASSERT_EQ(id.positions_deg.size(), 3u);
+  EXPECT_NEAR(id.positions_deg[1], 3 * 360.0 / 13, 1e-9);
+  EXPECT_NEAR(id.positions_deg[2], 7 * 360.0 / 13, 1e-9);
+}
+
+// Feature B alone: the true configuration's lines fit to their noise, a single roller does not.
+TEST(CountFit, SidebandModelFitsTheTrueConfiguration) {
+  SyntheticRecordSpec spec = RollerRecordSpec(1200, 60, {{0}, {1, 1.38, 120}});
+  spec.spin_phase_walk_rad = 0.0;
+  spec.entry_ratio = 0.0;
+  SyntheticTruth truth;
+  const Record r = MakeSyntheticRecord(spec, &truth);
+  dsp::EnvelopeAnalyzer an(r.samples, r.sample_rate_hz);
+  double rate = 0.0;
+  const auto se = an.SquaredEnvelope({2500, 3500}, 1000, &rate);
+  const SpinSidebands sb = MeasureSpinSidebands(se, rate, truth.spin_hz, truth.cage_hz);
+  SpinSidebands tolerant = sb;  // the fit's 3 % model tolerance
+  for (int j = 1; j <= sb.harmonics; ++j) {
+    double peak = 0.0;
+    for (int m = -sb.orders; m <= sb.orders; ++m)
+      peak = std::max(peak, std::abs(sb.value[sb.Index(j, m)]));
+    for (int m = -sb.orders; m <= sb.orders; ++m)
+      tolerant.noise_power[sb.Index(j, m)] += std::pow(0.03 * peak, 2);
+  }
+  HumpFit two;
+  two.slots = {0, 1};
+  two.amplitudes = {1.0, 1.0};
+  two.shape.exponent = 1.0;
+  two.shape.smear_rad = 0.02;
+  two.shape.half_angle_rad = truth.load_zone_half_angle_rad;
+  two.theta0_rad = 0.0;  // roller 0 on the load line at t = 0
+  HumpFit one = two;
+  one.slots = {0};
+  one.amplitudes = {1.0};
+  int p2 = 0, p1 = 0;
+  const double lines = 2.0 * sb.harmonics * (2 * sb.orders + 1);
+  EXPECT_LT(SidebandChi2(tolerant, two, 13, &p2), 1.5 * lines);
+  EXPECT_GT(SidebandChi2(tolerant, one, 13, &p1), 5.0 * lines);
+}
+
+TEST(CountFit, HumpFourierOfAFlatHumpIsItsMean) {
+  HumpShape s;
+  s.exponent = 1.0;
+  s.half_angle_rad = 1.2;
+  s.smear_rad = 0.01;
+  const auto m = HumpFourier(s, 3);
+  double mean = 0.0;
+  for (int i = 0; i < 3600; ++i) mean += SmoothedHump(-kPi + (i + 0.5) * 2 * kPi / 3600, s, 0.0);
+  EXPECT_NEAR(m[0], mean / 3600, 1e-4);
+  EXPECT_GT(m[0], m[1]);
+  EXPECT_GT(m[1], m[2]);
+}
+
+TEST(CountFit, OptionsAreChecked) {
+  CountFitOptions o;
+  std::string e;
+  EXPECT_TRUE(o.IsValid(&e));
+  o.min_relative_amplitude = 1.5;
+  EXPECT_FALSE(o.IsValid(&e));
+  EXPECT_NE(e.find("min_relative_amplitude"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace spallkit::identify

@@ -1,0 +1,56 @@
+// spall identify: the JSON keys, the text report, and bad input (exit code 2, one line).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/apps/run_spall.h"
+
+namespace {
+
+using spallkit::testing::RunSpall;
+
+const std::string kSample =
+    std::string(SPALLKIT_SOURCE_DIR) + "/datasets/samples/n205em_roller_defect_1200rpm.csv";
+
+TEST(IdentifyCli, JsonHasTheDocumentedKeys) {
+  const auto r =
+      RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --load-n 10000 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* k : {"defective_rollers", "width_mm", "identifiable", "diagnosis", "fit"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  const auto& dr = j["defective_rollers"];
+  for (const char* k : {"count", "probabilities", "positions_deg"})
+    EXPECT_TRUE(dr.contains(k)) << k;
+  EXPECT_EQ(j["diagnosis"]["verdict"], "rolling_element");
+  EXPECT_EQ(dr["count"], 1);  // the sample record has one spalled roller
+  EXPECT_FALSE(j["identifiable"]["depth"].get<bool>());
+  EXPECT_TRUE(j["identifiable"]["reasons"].is_array());
+  double total = 0.0;
+  for (const auto& [k, v] : dr["probabilities"].items()) total += v.get<double>();
+  EXPECT_NEAR(total, 1.0, 1e-9);
+}
+
+TEST(IdentifyCli, TextReport) {
+  const auto r = RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("defective rollers: 1"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("depth: not identifiable"), std::string::npos);
+}
+
+TEST(IdentifyCli, BadInputIsOneLineAndCode2) {
+  for (const std::string& args :
+       {"identify " + kSample + " --bearing N205EM --rpm 0",
+        "identify " + kSample + " --bearing N205EM --rpm 1200 --load-n -3",
+        std::string("identify /nonexistent.csv --bearing N205EM --rpm 1200"),
+        "identify " + kSample + " --bearing NOPE --rpm 1200"}) {
+    const auto r = RunSpall(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_EQ(r.err.rfind("spall:", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
+}  // namespace

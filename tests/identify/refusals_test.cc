@@ -1,0 +1,85 @@
+// What the identification refuses to state: no roller signature, race faults, widths below the
+// record's resolution, too few cage revolutions, and bad input.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "tests/dsp/diagnose_test_signals.h"
+#include "tests/identify/identify_test_records.h"
+
+namespace spallkit::identify {
+namespace {
+
+using spallkit::testing::IdentifyRecord;
+using spallkit::testing::RollerRecordSpec;
+
+void ExpectNothingStated(const Identification& id) {
+  EXPECT_FALSE(id.count_identifiable);
+  EXPECT_FALSE(id.width_identifiable);
+  EXPECT_FALSE(id.depth_identifiable);
+  const std::string json = id.ToJson();
+  EXPECT_NE(json.find("\"count\": null"), std::string::npos) << json.substr(0, 400);
+  EXPECT_NE(json.find("\"width_mm\": null"), std::string::npos);
+}
+
+TEST(Refusals, OuterRaceFaultHasNoRollerCount) {
+  spallkit::testing::FaultSignalSpec s;
+  s.fs_hz = 20000;
+  s.duration_s = 1.0;
+  s.rate_hz = ComputeFrequencies(CatalogBearing("N205EM"), 20.0).bpfo_hz;
+  s.noise_rms = 0.2;
+  const Identification id = IdentifyRecord(spallkit::testing::MakeFaultRecord(s), 1200, 10000);
+  EXPECT_EQ(id.diagnosis.verdict, "outer_race");
+  EXPECT_FALSE(id.roller_signature);
+  ExpectNothingStated(id);
+  EXPECT_NE(id.reasons.front().find("race fault"), std::string::npos);
+}
+
+TEST(Refusals, NoiseHasNoRollerSignature) {
+  spallkit::testing::FaultSignalSpec s;
+  s.fs_hz = 20000;
+  s.duration_s = 1.0;
+  const Identification id = IdentifyRecord(spallkit::testing::MakeFaultRecord(s), 1200, 10000);
+  EXPECT_EQ(id.diagnosis.verdict, "healthy");
+  ExpectNothingStated(id);
+  EXPECT_NE(id.reasons.front().find("no roller signature"), std::string::npos);
+}
+
+// A 0.3 mm spall at 1800 rpm: entry and exit 0.17 ms apart, inside the impact's own ring-down in
+// any band the record offers; the count is stated, the width is not.
+TEST(Refusals, WidthBelowTheResolutionIsNotStated) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1800, 20, {{0, 0.3, 0}}));
+  const Identification id = IdentifyRecord(r, 1800, 10000);
+  EXPECT_TRUE(id.count_identifiable) << id.BriefReport();
+  EXPECT_FALSE(id.width_identifiable) << id.BriefReport();
+  EXPECT_EQ(id.width_m, 0.0);
+}
+
+// The diagnosis itself needs 4 cage revolutions; a stricter requirement refuses the count.
+TEST(Refusals, TooFewCageRevolutionsForACount) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0}}));  // 8.3 revolutions
+  IdentifyOptions o;
+  o.min_cage_revolutions = 10;
+  const Identification id = IdentifyRecord(r, 1200, 10000, o);
+  ASSERT_TRUE(id.roller_signature);
+  EXPECT_FALSE(id.count_identifiable);
+  EXPECT_NE(id.reasons.front().find("cage revolutions"), std::string::npos);
+}
+
+TEST(Refusals, BadInput) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0}}));
+  const BearingGeometry g = CatalogBearing("N205EM");
+  const dsp::Diagnosis d = dsp::Diagnose(r, g, 20.0);
+  Record other = r;
+  other.samples.resize(r.samples.size() / 2);
+  EXPECT_THROW(Identify(other, g, 20.0, d), InputError);
+  IdentifyOptions o;
+  o.radial_load_n = -5.0;
+  std::string e;
+  EXPECT_FALSE(o.IsValid(&e));
+  EXPECT_THROW(Identify(r, g, 20.0, d, o), InputError);
+  SyntheticRecordSpec bad = RollerRecordSpec(1200, 20, {{13}});
+  EXPECT_THROW(MakeSyntheticRecord(bad), InputError);
+}
+
+}  // namespace
+}  // namespace spallkit::identify
