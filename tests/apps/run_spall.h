@@ -1,5 +1,6 @@
 // Runs the built `spall` binary with arguments and captures its exit code, stdout and stderr
-// (stderr through a file, so `spall` sees a non-terminal stderr as in a batch job).
+// (stderr through a file, so `spall` sees a non-terminal stderr as in a batch job). The one
+// helper every test that runs `spall` uses.
 #pragma once
 
 #include <sys/wait.h>
@@ -25,6 +26,7 @@ inline SpallResult RunSpall(const std::string& args) {
   const std::string cmd = std::string(SPALLKIT_SPALL_EXE) + " " + args + " 2>" + err_path;
   SpallResult r;
   FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
   char buf[4096];
   size_t n;
   while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
@@ -33,6 +35,13 @@ inline SpallResult RunSpall(const std::string& args) {
   std::ifstream e(err_path);
   r.err.assign(std::istreambuf_iterator<char>(e), {});
   return r;
+}
+
+// Same, with stdout and stderr in one string (stdout first); *code is the exit status.
+inline std::string RunSpall(const std::string& args, int* code) {
+  const SpallResult r = RunSpall(args);
+  *code = r.code;
+  return r.out + r.err;
 }
 
 }  // namespace spallkit::testing
