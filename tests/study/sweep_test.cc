@@ -106,10 +106,10 @@ cases = 8
 "defects.rollers" = { choice = [[], [0, 6]] }
 "defects.*.width_mm" = { uniform = [0.5, 2.0] }
 )");
-  int healthy = 0;
+  int healthy_cases = 0;
   for (int i = 0; i < r.num_cases(); ++i) {
     const sim::Scene scene = CaseScene(r, MakeCase(r, i));
-    healthy += scene.defects.empty();
+    healthy_cases += scene.defects.empty();
     if (!scene.defects.empty()) {
       ASSERT_EQ(scene.defects.size(), 2u);
       EXPECT_EQ(scene.defects[1].roller, 6);
@@ -118,8 +118,8 @@ cases = 8
       EXPECT_GE(scene.defects[1].width_m, 0.5e-3);
     }
   }
-  EXPECT_GT(healthy, 0);
-  EXPECT_LT(healthy, r.num_cases());
+  EXPECT_GT(healthy_cases, 0);
+  EXPECT_LT(healthy_cases, r.num_cases());
 }
 
 TEST(SweepTest, TomlValueTextRoundTripsDoublesAndKeepsThemFloats) {
