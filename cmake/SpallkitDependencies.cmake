@@ -20,3 +20,10 @@ endif()
 # Older names of the HDF5 and OpenCV targets, for CMake files that still use them.
 add_library(spallkit_hdf5 ALIAS SpallkitHDF5::HDF5)
 add_library(spallkit_opencv ALIAS SpallkitOpenCV::OpenCV)
+
+# MPI (optional, Open MPI from Debian): `spall dataset run` under `mpirun -n P` spreads a sweep's
+# cases over the ranks. Without it the build still works and runs sweeps on local workers.
+option(SPALLKIT_WITH_MPI "Use MPI for spall dataset when it is found" ON)
+if(SPALLKIT_WITH_MPI)
+  find_package(MPI COMPONENTS C QUIET)
+endif()
