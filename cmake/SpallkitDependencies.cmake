@@ -25,5 +25,8 @@ add_library(spallkit_opencv ALIAS SpallkitOpenCV::OpenCV)
 # cases over the ranks. Without it the build still works and runs sweeps on local workers.
 option(SPALLKIT_WITH_MPI "Use MPI for spall dataset when it is found" ON)
 if(SPALLKIT_WITH_MPI)
-  find_package(MPI COMPONENTS C QUIET)
+  # The CXX component (C API, no C++ bindings) so a C++-only project using an installed
+  # spallkit::study finds it too.
+  set(MPI_CXX_SKIP_MPICXX ON)
+  find_package(MPI COMPONENTS CXX QUIET)
 endif()
