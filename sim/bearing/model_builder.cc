@@ -240,22 +240,22 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
 }
 
 double BearingModel::RollerOuterForce(int j) const {
-  if (hybrid_) return hybrid_->OuterForce(j);
+  if (hybrid_) return hybrid_->rollers().OuterForce(j);
   return outer_pairs_[j]->Resultant().NormalMagnitude();
 }
 double BearingModel::RollerInnerForce(int j) const {
-  if (hybrid_) return hybrid_->InnerForce(j);
+  if (hybrid_) return hybrid_->rollers().InnerForce(j);
   return inner_pairs_[j]->Resultant().NormalMagnitude();
 }
 double BearingModel::RollerCageForce(int j) const {
-  if (hybrid_) return hybrid_->CageForce(j);
+  if (hybrid_) return hybrid_->rollers().CageForce(j);
   return cage_pairs_[2 * j]->Resultant().NormalMagnitude() +
          cage_pairs_[2 * j + 1]->Resultant().NormalMagnitude() + cage_guide_->Force(j);
 }
 
 BodyMotion BearingModel::RollerMotion(int j) const {
   if (hybrid_) {
-    const HybridRollers::Body& b = hybrid_->roller(j);
+    const PlanarBody& b = hybrid_->rollers().roller(j);
     return {b.x, b.y, b.vx, b.vy, b.omega};
   }
   return FitMotion(solver_->state(), roller_nodes_[j]);
@@ -263,7 +263,7 @@ BodyMotion BearingModel::RollerMotion(int j) const {
 
 BodyMotion BearingModel::CageMotion() const {
   if (hybrid_) {
-    const HybridRollers::Body& b = hybrid_->cage();
+    const PlanarBody& b = hybrid_->rollers().cage();
     return {b.x, b.y, b.vx, b.vy, b.omega};
   }
   const RigidPart::Motion m = cage_->ComputeMotion(solver_->state());
@@ -272,7 +272,7 @@ BodyMotion BearingModel::CageMotion() const {
 
 BodyMotion BearingModel::InnerRingMotion() const {
   if (hybrid_) {
-    const HybridRollers::Body& b = hybrid_->shaft();
+    const PlanarBody& b = hybrid_->rollers().shaft();
     return {b.x, b.y, b.vx, b.vy, speed_(solver_->time())};
   }
   const solver::RigidBodyState& s = solver_->rigid_body_state(shaft_body_);
@@ -348,16 +348,16 @@ std::string BearingModel::Describe() const {
   std::ostringstream os;
   const fe::Mesh& m = mesh_.mesh;
   if (hybrid_) {
-    const HybridRollers& h = *hybrid_;
+    const RollerContacts& h = hybrid_->rollers();
     os << "model: hybrid (rigid rollers, cage and inner ring with exact profiles; FE outer ring "
           "and adapter): "
        << m.num_elements() << " elements, " << m.num_nodes()
        << " nodes; Palmgren K_c = " << h.contact_stiffness() / std::pow(1e3, 10.0 / 9.0) * 1e-3
-       << " kN/mm^(10/9), spread +-" << h.spread_half_width() * 1e3 << " mm, roller mass "
+       << " kN/mm^(10/9), spread +-" << hybrid_->kernel().half_width() * 1e3 << " mm, roller mass "
        << h.roller_mass(0) * 1e3 << " g, cage " << h.cage_mass() * 1e3 << " g, inner ring "
        << h.shaft_mass() * 1e3 << " g; ring-adapter tie " << tie_->num_pairs() << " node pairs"
        << "\ncontact stable step: roller side " << h.roller_time_step() * 1e9 << " ns, ring side "
-       << h.ring_time_step() * 1e9 << " ns (raceway kernel mass " << h.ring_contact_mass() * 1e6
+       << h.ring_time_step() * 1e9 << " ns (raceway kernel mass " << h.outer_race_mass() * 1e6
        << " mg), x 0.8";
   } else {
     os << "model: fe, " << m.num_elements() << " elements, " << m.num_nodes() << " nodes, "

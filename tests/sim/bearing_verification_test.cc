@@ -233,7 +233,7 @@ TEST(HybridVerificationTest, HalfLengthSpallKeepsRollingAtThePapersFriction) {
                                 "operation.speed_rpm=6000",
                                 "operation.ramp_s=0.002",
                                 "defects.0.length_mm=4.5"}));
-  const HybridRollers& h = *model.hybrid_rollers();
+  const RollerContacts& h = model.hybrid_rollers()->rollers();
   ASSERT_DOUBLE_EQ(h.spall_length_fraction(0), 0.5);
   // Mass properties: half healthy section, half notched section.
   const RollerProfile& p = h.profile(0);
@@ -309,7 +309,7 @@ TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARa
   constexpr int kDefective = 10;
   BearingModel model(LoadScene(
       SceneFile(), SpallDropRun(kDefective, {"model.fidelity=hybrid", "mesh.size_mm=2.0"})));
-  const HybridRollers& h = *model.hybrid_rollers();
+  const RollerContacts& h = model.hybrid_rollers()->rollers();
   const double alpha = h.profile(kDefective).HalfAngle();
   solver::ExplicitSolver& s = model.solver();
   s.Run(0.003);
@@ -320,7 +320,7 @@ TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARa
     s.Step();
     // Load zone: |psi| < 40 deg from the load line (-y).
     for (int j = 0; j < model.num_rollers(); ++j) {
-      const HybridRollers::Body& b = h.roller(j);
+      const PlanarBody& b = h.roller(j);
       const double orbit = std::atan2(b.y, b.x);
       const double psi = Wrap(orbit + 0.5 * kPi);
       if (std::abs(psi) > 40 * kPi / 180) continue;

@@ -386,7 +386,7 @@ TEST(SimulateTest, ResumedRunIsBitIdenticalToAnUninterruptedOne) {
 
 TEST(SimulateTest, HybridResumedRunIsBitIdenticalToAnUninterruptedOne) {
   // The hybrid model's rigid bodies, friction springs and energies travel in the checkpoint
-  // (HybridRollers::SaveState): a run stopped after the spall's first contacts and resumed
+  // (RollerContacts::SaveState): a run stopped after the spall's first contacts and resumed
   // must write exactly the datasets of the uninterrupted run. 6000 rpm with the spall so that
   // every state variable (friction springs, cage contacts) is live; a second, half-length spall
   // on roller 1 brings the intact part's friction springs in.

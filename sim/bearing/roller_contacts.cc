@@ -1,0 +1,451 @@
+#include "sim/bearing/roller_contacts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/constants.h"
+#include "core/error.h"
+#include "sim/quasistatic/harris_jones.h"
+
+namespace spallkit::sim {
+namespace {
+
+// Stick springs per roller: outer race, inner race, leading wall, trailing wall (the notched
+// part of the roller), then outer and inner race of the intact part of a partial-length spall.
+constexpr int kFrictionSlots = 6;
+// Safety factor on the contacts' stable step (the solver scales only the element step).
+constexpr double kContactSafety = 0.8;
+
+}  // namespace
+
+bool HybridOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!(palmgren_coefficient > 0)) return fail("hybrid model: palmgren_coefficient must be > 0");
+  if (!(contact_damping_ratio >= 0 && contact_damping_ratio <= 1))
+    return fail("hybrid model: contact_damping_ratio must be in [0, 1]");
+  if (!(tangential_stiffness_ratio > 0))
+    return fail("hybrid model: tangential_stiffness_ratio must be > 0");
+  if (!(cage_stiffness_n_per_m > 0))
+    return fail("hybrid model: cage_stiffness_n_per_m must be > 0");
+  if (!(spread_half_width_m >= 0)) return fail("hybrid model: spread_half_width_m must be >= 0");
+  return true;
+}
+
+RollerContacts::RollerContacts(const Scene& scene,
+                               const BearingMesh& housing,
+                               double outer_race_mass,
+                               const HybridOptions& options,
+                               const CageGuideOptions& cage_guide)
+    : scene_(scene), options_(options), cage_guide_(cage_guide), race_mass_(outer_race_mass) {
+  std::string err;
+  if (!options_.IsValid(&err)) throw InputError(err);
+  if (!cage_guide_.IsValid(&err)) throw InputError(err);
+  const SceneGeometry& g = scene_.geometry;
+  const int z = g.bearing.num_elements;
+  const double t = g.thickness_m;
+  const double omega = scene_.operation.inner_ring_speed_rad_s;
+  const double ramp = scene_.operation.ramp_s;
+  angle_ = solver::RampedRotation(omega, ramp);
+  speed_ = solver::RampedSpeed(omega, ramp);
+  const double load = scene_.operation.radial_load_n;
+  load_ = solver::LinearRamp(-load, scene_.operation.load_ramp_s);
+  inner_radius_ = housing.inner_raceway_radius_m;
+  pocket_half_width_ = 0.5 * (g.bearing.element_diameter_m + g.pocket_clearance_m);
+  pitch_radius_ = housing.pitch_radius_m;
+  k_c_ = PalmgrenContactStiffness(t, options_.palmgren_coefficient);
+
+  // Rollers: exact profiles, mass properties, initial pose (centred, pitch circle).
+  const double rho_r = scene_.materials.roller.density_kg_m3;
+  for (int j = 0; j < z; ++j) {
+    RollerProfile p;
+    p.radius = housing.roller_radius_m;
+    const double phi = housing.roller_angles_rad[j];
+    for (const Defect& d : scene_.defects)
+      if (d.roller == j) {
+        if (!(d.depth_m < p.radius) || !(d.width_m < 2.0 * p.radius))
+          throw InputError("defects: the spall of roller " + std::to_string(j) +
+                           " must be narrower than the roller diameter and shallower than its "
+                           "radius");
+        p.spalled = true, p.width = d.width_m, p.depth = d.depth_m, p.angle = phi + d.angle_rad;
+        p.edge_radius = d.edge_radius_m;
+        if (!(p.edge_radius >= 0) || !(p.radius - p.edge_radius > 0.5 * p.width + p.edge_radius) ||
+            !(p.edge_radius < p.depth))
+          throw InputError("defects: edge_radius_mm of roller " + std::to_string(j) +
+                           " must be >= 0, smaller than the spall depth, and leave the fillet "
+                           "inside the roller");
+      }
+    // A spall shorter than the roller: the spalled length fraction f has the notched section,
+    // the rest the full circle; mass properties are the length-weighted mixture.
+    double f = 1.0;
+    for (const Defect& d : scene_.defects)
+      if (d.roller == j && d.length_m > 0) f = std::min(1.0, d.length_m / t);
+    const RollerProfile::Properties sp = p.SectionProperties();
+    const double a_c = kPi * p.radius * p.radius, polar_c = 0.5 * a_c * p.radius * p.radius;
+    const double area = f * sp.area + (1 - f) * a_c;
+    const double cx = f * sp.area * sp.cx / area, cy = f * sp.area * sp.cy / area;
+    const double polar =
+        f * (sp.polar + sp.area * ((sp.cx - cx) * (sp.cx - cx) + (sp.cy - cy) * (sp.cy - cy))) +
+        (1 - f) * (polar_c + a_c * (cx * cx + cy * cy));
+    profiles_.push_back(p);
+    intact_profiles_.push_back(p);
+    intact_profiles_.back().spalled = false;
+    spall_fraction_.push_back(p.spalled ? f : 1.0);
+    roller_mass_.push_back(rho_r * t * area);
+    roller_inertia_.push_back(rho_r * t * polar);
+    centroid_x_.push_back(cx);
+    centroid_y_.push_back(cy);
+    pocket_angle_.push_back(phi);
+    Body b;
+    b.x = housing.pitch_radius_m * std::cos(phi) + cx;
+    b.y = housing.pitch_radius_m * std::sin(phi) + cy;
+    rollers_.push_back(b);
+  }
+
+  // Cage webs: the annulus minus the Z pockets (polar-grid quadrature).
+  {
+    const double rci = 0.5 * g.cage_inner_diameter_m, rco = 0.5 * g.cage_outer_diameter_m;
+    const int nr = 200, nt = 400 * z;
+    const double dr = (rco - rci) / nr, dth = 2 * kPi / nt;
+    double area = 0, polar = 0;
+    for (int i = 0; i < nr; ++i) {
+      const double r = rci + (i + 0.5) * dr;
+      for (int k = 0; k < nt; ++k) {
+        const double th = (k + 0.5) * dth;
+        const double rel = th - pocket_angle_[0];
+        const double d = WrapAngle(rel - 2 * kPi / z * std::round(rel / (2 * kPi / z)));
+        if (std::cos(d) > 0 && std::abs(r * std::sin(d)) < pocket_half_width_) continue;
+        area += r * dr * dth;
+        polar += r * r * r * dr * dth;
+      }
+    }
+    cage_mass_ = scene_.materials.cage.density_kg_m3 * t * area;
+    cage_inertia_ = scene_.materials.cage.density_kg_m3 * t * polar;
+  }
+  shaft_mass_ = scene_.materials.inner_ring.density_kg_m3 * g.ring_width_m * kPi *
+                (inner_radius_ * inner_radius_ -
+                 0.25 * g.inner_ring_bore_diameter_m * g.inner_ring_bore_diameter_m);
+
+  // Stable step of the contacts (the normal and the stick spring act together; stiffness at
+  // twice the radial load, a bound on impacts): each contact is a two-body oscillator with
+  // damping zeta of ITS critical value (reduced mass), so the central-difference limit is
+  // 2/omega (sqrt(1 + zeta^2) - zeta) with
+  //  - roller side: both races' springs on the roller's rim (effective mass m/3: translation
+  //    plus rotation for a tangential force on a disc), omega^2 = 2 k (3/m_r);
+  //  - ring side: omega^2 = k (3/m_r + 1/m_ring) for one contact on the ring's kernel nodes.
+  {
+    const double q = 2.0 * std::max(load, 1000.0);
+    const double delta = std::pow(q / k_c_, 0.9);
+    const double kn = 10.0 / 9.0 * q / delta;
+    double m_min = roller_mass_[0];
+    for (double m : roller_mass_) m_min = std::min(m_min, m);
+    const double zeta = options_.contact_damping_ratio;
+    const double k = kn * (1.0 + options_.tangential_stiffness_ratio);
+    auto limit = [zeta](double omega) { return 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta); };
+    roller_dt_ = limit(std::sqrt(2.0 * k * 3.0 / m_min));
+    ring_dt_ = limit(std::sqrt(k * (3.0 / m_min + 1.0 / race_mass_)));
+    dt_limit_ = kContactSafety * std::min(roller_dt_, ring_dt_);
+  }
+
+  friction_.assign(kFrictionSlots * z, 0.0);
+  outer_force_.assign(z, 0.0);
+  inner_force_.assign(z, 0.0);
+  cage_force_.assign(z, 0.0);
+  fx_.assign(z, 0.0);
+  fy_.assign(z, 0.0);
+  torque_.assign(z, 0.0);
+  friction_law_.static_coefficient = scene_.friction.mu_static;
+  friction_law_.dynamic_coefficient = scene_.friction.mu_dynamic;
+  friction_law_.decay = scene_.friction.decay_s_m;
+}
+
+void RollerContacts::RollerCentre(int j, double* x, double* y) const {
+  const Body& b = rollers_[j];
+  const double c = std::cos(b.angle), s = std::sin(b.angle);
+  *x = b.x - (c * centroid_x_[j] - s * centroid_y_[j]);
+  *y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
+}
+
+int RollerContacts::RacePoints(int j, int which, const RollerProfile& p, RacePoint out[2]) const {
+  // Positions only; the outer race radius is filled in by the caller (needs the nodal state).
+  const Body& b = rollers_[j];
+  double cx, cy;
+  RollerCentre(j, &cx, &cy);
+  double dx, dy;  // unit direction from the roller centre towards the race contact
+  if (which == 0) {
+    const double d = std::hypot(cx, cy);
+    dx = cx / d, dy = cy / d;
+  } else {
+    const double ex = shaft_.x - cx, ey = shaft_.y - cy, d = std::hypot(ex, ey);
+    dx = ex / d, dy = ey / d;
+  }
+  const double a = std::atan2(dy, dx) - b.angle;
+  if (!p.InSpall(a)) {
+    out[0] = {cx + p.radius * dx, cy + p.radius * dy, -dx, -dy, 0.0};
+    return 1;
+  }
+  // Rim edges: the fillet centres (the corners for sharp edges); the caller offsets them by
+  // the fillet radius along the race normal through each.
+  double kx[2], ky[2];
+  p.RimCorners(kx, ky);
+  const double c = std::cos(b.angle), s = std::sin(b.angle);
+  for (int k = 0; k < 2; ++k)
+    out[k] = {cx + c * kx[k] - s * ky[k], cy + s * kx[k] + c * ky[k], -dx, -dy, 0.0};
+  return 2;
+}
+
+void RollerContacts::CounterVelocity(
+    Counter body, double px, double py, double* vx, double* vy) const {
+  if (body == Counter::kOuterRace) {
+    race_->Velocity(px, py, vx, vy);
+  } else if (body == Counter::kShaft) {
+    *vx = shaft_.vx - omega_s_ * (py - shaft_.y);
+    *vy = shaft_.vy + omega_s_ * (px - shaft_.x);
+  } else {
+    *vx = cage_.vx - cage_.omega * (py - cage_.y);
+    *vy = cage_.vy + cage_.omega * (px - cage_.x);
+  }
+}
+
+void RollerContacts::ApplyCounter(Counter body, double px, double py, double fx, double fy) {
+  if (body == Counter::kOuterRace) {
+    race_->Apply(px, py, fx, fy);
+  } else if (body == Counter::kShaft) {
+    shaft_fx_ += fx, shaft_fy_ += fy;
+    shaft_torque_ += (px - shaft_.x) * fy - (py - shaft_.y) * fx;
+  } else {
+    cage_fx_ += fx, cage_fy_ += fy;
+    cage_torque_ += (px - cage_.x) * fy - (py - cage_.y) * fx;
+  }
+}
+
+double RollerContacts::Contact(
+    int j, Counter body, bool palmgren, RacePoint* pts, int npts, double* spring, double scale) {
+  const double zeta = options_.contact_damping_ratio;
+  const double dt = dt_;
+  const Body& b = rollers_[j];
+  // Damping of each contact: a fraction of ITS critical value, i.e. with the reduced mass of
+  // the roller and the counter body (LS-DYNA's viscous contact damping does the same with the
+  // slave and master nodal masses); for the outer race, its effective contact mass.
+  const double m_counter = body == Counter::kOuterRace ? race_mass_
+                           : body == Counter::kShaft   ? shaft_mass_
+                                                       : cage_mass_;
+  const double m = 1.0 / (1.0 / roller_mass_[j] + 1.0 / m_counter);
+  const double m_t = 1.0 / (3.0 / roller_mass_[j] + 1.0 / m_counter);
+  double q[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0;
+  double tx = -pts[0].ny, ty = pts[0].nx;
+  for (int k = 0; k < npts; ++k) {
+    const RacePoint& p = pts[k];
+    if (!(p.delta > 0)) continue;
+    double qe, kn;
+    if (palmgren) {
+      qe = scale * k_c_ * std::pow(p.delta, 10.0 / 9.0);
+      kn = 10.0 / 9.0 * qe / p.delta;
+      step_potential_ += qe * p.delta * (9.0 / 19.0);
+    } else {
+      kn = options_.cage_stiffness_n_per_m;
+      qe = kn * p.delta;
+      step_potential_ += 0.5 * qe * p.delta;
+    }
+    double vx, vy;
+    CounterVelocity(body, p.px, p.py, &vx, &vy);
+    const double rvx = b.vx - b.omega * (p.py - b.y) - vx;
+    const double rvy = b.vy + b.omega * (p.px - b.x) - vy;
+    const double rate = -(rvx * p.nx + rvy * p.ny);  // d delta / dt
+    const double c = 2.0 * zeta * std::sqrt(kn * m);
+    q[k] = std::max(0.0, qe + c * rate);
+    damping_work_ += (q[k] - qe) * rate * dt;
+    q_total += q[k];
+    kn_total += kn;
+    vt_acc += q[k] * (rvx * tx + rvy * ty);
+  }
+  if (!(q_total > 0)) {
+    *spring = 0.0;
+    return 0.0;
+  }
+  // The contact module's friction law: stick spring returned to mu(v_t) Q, plus a damper on
+  // the stick spring (capped too).
+  const double vt = vt_acc / q_total;
+  const double cap = friction_law_.Coefficient(vt) * q_total;
+  const double kt = options_.tangential_stiffness_ratio * kn_total;
+  const double ct = 2.0 * zeta * std::sqrt(kt * m_t);
+  const double fs = contact::ReturnMap(*spring, vt * dt, kt, cap).force;
+  const double f = std::clamp(fs - ct * vt, -cap, cap);
+  *spring = fs;
+  friction_work_ -= f * vt * dt;
+  for (int k = 0; k < npts; ++k) {
+    if (!(q[k] > 0)) continue;
+    const RacePoint& p = pts[k];
+    const double ft = f * q[k] / q_total;
+    const double fx = q[k] * p.nx + ft * tx, fy = q[k] * p.ny + ft * ty;
+    fx_[j] += fx, fy_[j] += fy;
+    torque_[j] += (p.px - b.x) * fy - (p.py - b.y) * fx;
+    ApplyCounter(body, p.px, p.py, -fx, -fy);
+  }
+  return q_total;
+}
+
+void RollerContacts::RaceContacts(int j, const RollerProfile& prof, double scale, int slot) {
+  RacePoint pts[2];
+  // Outer race. A profile point is a circle of radius rad around a centre q (the roller's
+  // circle, or a rim fillet: its centre and radius, a corner with radius 0); the race gives its
+  // gap and the normal of the deformed race.
+  const double rho = prof.edge_radius;
+  int n = RacePoints(j, 0, prof, pts);
+  double qx[2], qy[2], rad[2];
+  if (n == 1) {
+    RollerCentre(j, &qx[0], &qy[0]);
+    rad[0] = prof.radius;
+  } else {
+    for (int k = 0; k < 2; ++k) qx[k] = pts[k].px, qy[k] = pts[k].py, rad[k] = rho;
+  }
+  for (int k = 0; k < n; ++k) race_->Gap(qx[k], qy[k], rad[k], &pts[k]);
+  outer_force_[j] += Contact(j, Counter::kOuterRace, true, pts, n, &friction_[slot], scale);
+  // Inner race (rigid ring on the shaft).
+  n = RacePoints(j, 1, prof, pts);
+  for (int k = 0; k < n; ++k) {
+    const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y, d = std::hypot(ex, ey);
+    if (n == 2) {  // rim edge: normal through the fillet centre, surface point rho closer
+      pts[k].nx = ex / d, pts[k].ny = ey / d;
+      pts[k].px -= rho * pts[k].nx, pts[k].py -= rho * pts[k].ny;
+      pts[k].delta = inner_radius_ - (d - rho);
+    } else {
+      pts[k].delta = inner_radius_ - d;
+    }
+  }
+  inner_force_[j] += Contact(j, Counter::kShaft, true, pts, n, &friction_[slot + 1], scale);
+}
+
+void RollerContacts::CageContacts(int j) {
+  const double f = spall_fraction_[j];
+  // Cage pocket walls: straight lines +-W/2 from the pocket's centre line.
+  double cx, cy;
+  RollerCentre(j, &cx, &cy);
+  const double psi = pocket_angle_[j] + cage_.angle;
+  const double twx = -std::sin(psi), twy = std::cos(psi);
+  const double lateral = (cx - cage_.x) * twx + (cy - cage_.y) * twy;
+  const double a_lead = psi + 0.5 * kPi - rollers_[j].angle;
+  // The force acts at the profile's extreme point towards the wall (a rim edge when the spall
+  // faces it), so that its torque matches the gap's dependence on the roller's angle. The
+  // intact part of a partial-length spall reaches further than the notched part.
+  double lx, ly, kx, ky;
+  const RollerProfile& wall_prof = f < 1.0 ? intact_profiles_[j] : profiles_[j];
+  const double h_lead = wall_prof.SupportPoint(a_lead, &lx, &ly);
+  const double h_trail = wall_prof.SupportPoint(a_lead + kPi, &kx, &ky);
+  const double rc = std::cos(rollers_[j].angle), rs = std::sin(rollers_[j].angle);
+  RacePoint lead{cx + rc * lx - rs * ly,
+                 cy + rs * lx + rc * ly,
+                 -twx,
+                 -twy,
+                 lateral + h_lead - pocket_half_width_};
+  RacePoint trail{cx + rc * kx - rs * ky,
+                  cy + rs * kx + rc * ky,
+                  twx,
+                  twy,
+                  -lateral + h_trail - pocket_half_width_};
+  cage_force_[j] = Contact(j, Counter::kCage, false, &lead, 1, &friction_[kFrictionSlots * j + 2]) +
+                   Contact(j, Counter::kCage, false, &trail, 1, &friction_[kFrictionSlots * j + 3]);
+  // Radial retention (roller-guided cage): the pocket keeps the roller within +-radial_play of
+  // the pitch radius of the cage frame, else the cage could drift sideways with the rollers
+  // sliding along their orbits (walls alone allow that mode).
+  const double ex = std::cos(psi), ey = std::sin(psi);
+  const double radial = (cx - cage_.x) * ex + (cy - cage_.y) * ey - pitch_radius_;
+  const double q_signed = cage_guide_.RadialForce(radial, &step_potential_);  // along e
+  if (q_signed != 0.0) {
+    const double q = std::abs(q_signed);
+    const double fx = q_signed * ex, fy = q_signed * ey;
+    fx_[j] += fx, fy_[j] += fy;
+    torque_[j] += (cx - rollers_[j].x) * fy - (cy - rollers_[j].y) * fx;
+    ApplyCounter(Counter::kCage, cx, cy, -fx, -fy);
+    cage_force_[j] += q;
+  }
+}
+
+void RollerContacts::Step(OuterRace& race, double t, double dt) {
+  race_ = &race;
+  dt_ = dt;
+  omega_s_ = speed_(t);
+  shaft_fx_ = shaft_fy_ = shaft_torque_ = cage_fx_ = cage_fy_ = cage_torque_ = 0.0;
+  step_potential_ = 0.0;
+  std::fill(fx_.begin(), fx_.end(), 0.0);
+  std::fill(fy_.begin(), fy_.end(), 0.0);
+  std::fill(torque_.begin(), torque_.end(), 0.0);
+  for (int j = 0; j < num_rollers(); ++j) {
+    const double f = spall_fraction_[j];
+    outer_force_[j] = inner_force_[j] = 0.0;
+    RaceContacts(j, profiles_[j], f, kFrictionSlots * j);
+    if (f < 1.0) RaceContacts(j, intact_profiles_[j], 1.0 - f, kFrictionSlots * j + 4);
+    CageContacts(j);
+  }
+  potential_ = step_potential_;
+  Integrate(t, dt);
+  race_ = nullptr;
+}
+
+void RollerContacts::Integrate(double t, double dt) {
+  const double dt_avg = 0.5 * (dt_prev_ + dt);
+  double kinetic = 0.0;
+  for (int j = 0; j < num_rollers(); ++j) {
+    Body& b = rollers_[j];
+    b.Advance(fx_[j], fy_[j], torque_[j], roller_mass_[j], roller_inertia_[j], dt_avg, dt);
+    kinetic += b.KineticEnergy(roller_mass_[j], roller_inertia_[j]);
+  }
+  cage_.Advance(cage_fx_, cage_fy_, cage_torque_, cage_mass_, cage_inertia_, dt_avg, dt);
+  kinetic += cage_.KineticEnergy(cage_mass_, cage_inertia_);
+  const double load = load_(t);
+  const double vy_old = shaft_.vy;
+  shaft_.Translate(shaft_fx_, shaft_fy_ + load, shaft_mass_, dt_avg, dt);
+  shaft_.angle = angle_(t + dt);
+  shaft_.omega = speed_(t + 0.5 * dt);
+  kinetic += shaft_.TranslationalEnergy(shaft_mass_);
+  kinetic_ = kinetic;
+  // Load work over the half steps around t^n; drive torque = -(contact torque on the shaft).
+  external_work_ += load * dt_avg * 0.5 * (vy_old + shaft_.vy);
+  external_work_ += -shaft_torque_ * omega_s_ * dt_avg;
+  dt_prev_ = dt;
+}
+
+std::string RollerContacts::SaveState() const {
+  std::vector<double> v;
+  auto put_body = [&](const Body& b) {
+    for (double x : {b.x, b.y, b.angle, b.vx, b.vy, b.omega}) v.push_back(x);
+  };
+  for (const Body& b : rollers_) put_body(b);
+  put_body(cage_);
+  put_body(shaft_);
+  v.insert(v.end(), friction_.begin(), friction_.end());
+  v.insert(v.end(), outer_force_.begin(), outer_force_.end());
+  v.insert(v.end(), inner_force_.begin(), inner_force_.end());
+  v.insert(v.end(), cage_force_.begin(), cage_force_.end());
+  for (double x : {dt_prev_, potential_, kinetic_, friction_work_, damping_work_, external_work_})
+    v.push_back(x);
+  return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+}
+
+void RollerContacts::LoadState(const std::string& bytes) {
+  const size_t z = rollers_.size();
+  const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 6;
+  if (bytes.size() != n * sizeof(double))
+    throw InputError("roller contacts: checkpoint state has the wrong size");
+  std::vector<double> v(n);
+  std::memcpy(v.data(), bytes.data(), bytes.size());
+  size_t i = 0;
+  auto get_body = [&](Body* b) {
+    for (double* x : {&b->x, &b->y, &b->angle, &b->vx, &b->vy, &b->omega}) *x = v[i++];
+  };
+  for (Body& b : rollers_) get_body(&b);
+  get_body(&cage_);
+  get_body(&shaft_);
+  for (double& x : friction_) x = v[i++];
+  for (double& x : outer_force_) x = v[i++];
+  for (double& x : inner_force_) x = v[i++];
+  for (double& x : cage_force_) x = v[i++];
+  for (double* x :
+       {&dt_prev_, &potential_, &kinetic_, &friction_work_, &damping_work_, &external_work_})
+    *x = v[i++];
+}
+
+}  // namespace spallkit::sim

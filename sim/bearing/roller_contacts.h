@@ -1,0 +1,189 @@
+// The rigid half of the hybrid and lumped bearing models (DESIGN.md "Fidelity ladder"): rollers,
+// cage and inner ring (shaft) as RIGID bodies with exact profiles (roller_profile.h), in contact
+// with an outer race that each model supplies (OuterRace: the FE ring's raceway nodes in the
+// hybrid model, a rigid ring on the housing's stiffness in the lumped model).
+//
+// Why: in the full FE model a roller contact is carried by one or two mesh nodes, much softer
+// than Palmgren's line contact and laterally unstable, and the small O-grid elements inside the
+// rollers set the time step (docs/BEARING_MODEL.md). Here every roller is a circle of radius r
+// with an exact flat-bottomed spall (chord w at the surface, depth h), its mass and inertia
+// integrated from that profile, and each roller-race contact follows Palmgren's law
+// Q = K_c delta^(10/9) (K_c = 8.06e4 l^(8/9) N/mm^(10/9), the law Harris-Jones uses).
+//
+// Contact geometry (docs/BEARING_MODEL.md, "The hybrid model"):
+//  - roller-outer race: along the line from the bearing centre through the roller centre. If
+//    that direction is on the intact circle, one contact point at r; if it falls inside the spall
+//    (the spall faces the race), the roller rests on the spall's two rim edges, each checked
+//    against the race (the race curvature included): the force drop of a spall passage.
+//  - roller-inner race: the inner ring is rigid (on the shaft): exact circle of the raceway
+//    radius around the shaft centre; the shaft translates freely under the radial load and turns
+//    at the prescribed (ramped) speed.
+//  - roller-cage: the pocket walls are straight lines (W = D + pocket clearance apart), the
+//    roller's extent towards a wall is its support function (the spall corners when the spall
+//    faces the wall); linear spring. Radially each pocket holds its roller within
+//    +-radial_play of the pitch radius (roller-guided cage, CageGuideOptions in constraints.h,
+//    the same assumption as the FE model's), linear spring beyond.
+//  - every contact: normal damping (fraction of critical of the contact's two-body oscillator:
+//    reduced mass of the roller and the counter body), friction by the contact module's law
+//    (sim/contact/friction.h: mu = mu_d + (mu_s - mu_d) exp(-decay |v|), a stick spring capped
+//    at mu Q) plus a damper on the stick spring.
+// Time integration: central differences (rigid_body.h), inside Step().
+// Energies: StoredEnergy() = contact potentials + the rigid bodies' kinetic energy,
+// DissipatedEnergy() = friction + contact damping, ExternalWork() = radial load + shaft drive.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sim/bearing/constraints.h"
+#include "sim/bearing/mesher.h"
+#include "sim/bearing/rigid_body.h"
+#include "sim/bearing/roller_profile.h"
+#include "sim/bearing/scene.h"
+#include "sim/contact/friction.h"
+#include "sim/solver/explicit_solver.h"
+
+namespace spallkit::sim {
+
+struct HybridOptions {
+  double palmgren_coefficient = 8.06e4;     // K_c = coefficient * l_mm^(8/9), N/mm^(10/9)
+  double contact_damping_ratio = 0.1;       // normal contact damping, fraction of critical
+  double tangential_stiffness_ratio = 1.0;  // stick spring / normal tangent stiffness
+  double cage_stiffness_n_per_m = 2e8;      // pocket wall spring (whole section)
+  // Half-width L of the kernel that spreads an outer-race contact over raceway nodes; 0: the
+  // larger of 1 mm and 2 raceway node spacings (raceway_kernel.h; hybrid model only).
+  double spread_half_width_m = 0.0;
+
+  bool IsValid(std::string* error) const;
+};
+
+// One contact point of a roller with a race.
+struct RacePoint {
+  double px, py;  // world
+  double nx, ny;  // unit normal, direction of the force ON the roller
+  double delta;   // penetration (> 0: in contact)
+};
+
+// The outer race as the rollers see it.
+class OuterRace {
+ public:
+  virtual ~OuterRace() = default;
+  // Contact of a circle (centre (qx, qy), radius rad; world) with the race from inside: fills
+  // the penetration, the unit normal of the force on the roller (the deformed race's normal) and
+  // the surface point q - rad n.
+  virtual void Gap(double qx, double qy, double rad, RacePoint* p) const = 0;
+  // Velocity of the race's material at world point (px, py).
+  virtual void Velocity(double px, double py, double* vx, double* vy) const = 0;
+  // Adds a force on the race acting at (px, py).
+  virtual void Apply(double px, double py, double fx, double fy) = 0;
+};
+
+class RollerContacts {
+ public:
+  using Body = PlanarBody;
+
+  // Geometry from `housing` (raceway, pitch and roller radii, roller angles; its mesh is not
+  // used). `outer_race_mass`: the outer race's effective mass for one contact (kg; the FE
+  // kernel's, or the rigid ring's). Throws InputError.
+  RollerContacts(const Scene& scene,
+                 const BearingMesh& housing,
+                 double outer_race_mass,
+                 const HybridOptions& options,
+                 const CageGuideOptions& cage_guide);
+
+  // One step: contact forces at time t (positions x^n, velocities v^(n-1/2)), the reactions
+  // applied to `race`, then the rigid bodies advanced to x^(n+1), v^(n+1/2).
+  void Step(OuterRace& race, double t, double dt);
+  // Largest stable step of the contacts (safety factor included).
+  double StableTimeStep() const { return dt_limit_; }
+
+  double StoredEnergy() const { return potential_ + kinetic_; }
+  double DissipatedEnergy() const { return friction_work_ + damping_work_; }
+  double ExternalWork() const { return external_work_; }
+  std::string SaveState() const;
+  void LoadState(const std::string& bytes);  // throws InputError on a size mismatch
+
+  int num_rollers() const { return static_cast<int>(rollers_.size()); }
+  const Body& roller(int j) const { return rollers_[j]; }
+  const Body& cage() const { return cage_; }
+  const Body& shaft() const { return shaft_; }
+  const RollerProfile& profile(int j) const { return profiles_[j]; }
+  // Fraction of roller j's length that carries its spall (1: through-length or healthy).
+  double spall_length_fraction(int j) const { return spall_fraction_[j]; }
+  double roller_mass(int j) const { return roller_mass_[j]; }
+  double roller_inertia(int j) const { return roller_inertia_[j]; }
+  double cage_mass() const { return cage_mass_; }
+  double shaft_mass() const { return shaft_mass_; }
+  double contact_stiffness() const { return k_c_; }  // K_c, N/m^(10/9)
+  double outer_race_mass() const { return race_mass_; }
+  // Contact stable steps (s, before the safety factor 0.8): roller side and ring side.
+  double roller_time_step() const { return roller_dt_; }
+  double ring_time_step() const { return ring_dt_; }
+  // Circle centre of roller j (world).
+  void RollerCentre(int j, double* x, double* y) const;
+  // Normal contact force magnitudes on roller j at the last step (N, whole section).
+  double OuterForce(int j) const { return outer_force_[j]; }
+  double InnerForce(int j) const { return inner_force_[j]; }
+  double CageForce(int j) const { return cage_force_[j]; }
+  double ShaftSpeed(double t) const { return speed_(t); }
+  // Radial load on the shaft at t (N, along +y; negative: downwards).
+  double ShaftLoad(double t) const { return load_(t); }
+
+ private:
+  enum class Counter { kOuterRace, kShaft, kCage };
+  // Candidate points of roller j against the outer (which = 0) or inner (1) race: positions of
+  // the circle centre or the two rim fillet centres, normal along the centre line.
+  int RacePoints(int j, int which, const RollerProfile& profile, RacePoint out[2]) const;
+  void CounterVelocity(Counter body, double px, double py, double* vx, double* vy) const;
+  void ApplyCounter(Counter body, double px, double py, double fx, double fy);
+  // One contact (1 or 2 points) of roller j with a counter body: normal force (Palmgren or the
+  // cage's linear spring), damping and friction on the stick spring *spring; forces added to
+  // the roller and the counter body. `scale`: the contact's share of the Palmgren stiffness.
+  // Returns the normal force.
+  double Contact(int j,
+                 Counter body,
+                 bool palmgren,
+                 RacePoint* pts,
+                 int npts,
+                 double* spring,
+                 double scale = 1.0);
+  // Both race contacts of roller j for one profile carrying `scale` of the Palmgren stiffness;
+  // stick springs friction_[slot], friction_[slot + 1]. Adds to outer_force_ / inner_force_.
+  void RaceContacts(int j, const RollerProfile& profile, double scale, int slot);
+  // Pocket walls and the radial guide of roller j.
+  void CageContacts(int j);
+  // Central-difference update of every rigid body and the energy books.
+  void Integrate(double t, double dt);
+
+  Scene scene_;
+  HybridOptions options_;
+  CageGuideOptions cage_guide_;
+  contact::FrictionLaw friction_law_;
+  solver::TimeFunction angle_, speed_, load_;
+  std::vector<RollerProfile> profiles_;
+  std::vector<RollerProfile> intact_profiles_;  // the same circles without their spalls
+  std::vector<double> spall_fraction_;
+  std::vector<double> roller_mass_, roller_inertia_, centroid_x_, centroid_y_;  // body frame
+  std::vector<double> pocket_angle_;  // pocket j centre line in the cage frame
+  double cage_mass_ = 0, cage_inertia_ = 0, shaft_mass_ = 0, race_mass_ = 0;
+  double pocket_half_width_ = 0, pitch_radius_ = 0, inner_radius_ = 0;
+  double k_c_ = 0, dt_limit_ = 0, roller_dt_ = 0, ring_dt_ = 0;
+
+  // State (checkpointed).
+  std::vector<Body> rollers_;
+  Body cage_, shaft_;
+  std::vector<double> friction_;  // tangential spring force per (roller, contact): outer,
+                                  // inner, leading wall, trailing wall
+  std::vector<double> outer_force_, inner_force_, cage_force_;
+  double dt_prev_ = 0, potential_ = 0, kinetic_ = 0, friction_work_ = 0, damping_work_ = 0,
+         external_work_ = 0;
+
+  // Per step.
+  OuterRace* race_ = nullptr;
+  double dt_ = 0, omega_s_ = 0, step_potential_ = 0;
+  double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
+         cage_torque_ = 0;
+  std::vector<double> fx_, fy_, torque_;  // per roller
+};
+
+}  // namespace spallkit::sim
