@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -100,9 +101,13 @@ std::vector<std::string> NonEmptyLines(const std::string& text) {
   return lines;
 }
 
+// Shown by gtest and ctest in place of the raw bytes of a Case.
+void PrintTo(const Case& c, std::ostream* os) { *os << "bad_input.corpus:" << c.line; }
+
 class BadInput : public ::testing::TestWithParam<Case> {};
 
-TEST_P(BadInput, OneClearLineRightExitCodeNoOutputLeft) {
+// One clear line, the right exit code, no output left behind, no hang.
+TEST_P(BadInput, Case) {
   const Case& c = GetParam();
   ASSERT_GE(c.exit_code, 0) << "bad_input.corpus:" << c.line << ": expected 4 '|' fields";
   const fs::path tmp =
