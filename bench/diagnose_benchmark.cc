@@ -12,6 +12,7 @@
 namespace {
 
 using namespace spallkit::dsp;
+using spallkit::Record;
 
 Record MakeRecord(bool faulty) {
   spallkit::testing::FaultSignalSpec s;

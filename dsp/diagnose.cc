@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "dsp/explain.h"
 #include "dsp/prewhiten.h"
+#include "dsp/record_check.h"
 #include "dsp/statistics.h"
 
 namespace spallkit::dsp {
@@ -32,7 +33,8 @@ bool DiagnoseOptions::IsValid(std::string* error) const {
     return fail("false-alarm probability must be in (0, 1)");
   if (kurtogram_max_level < 0) return fail("kurtogram level must be >= 0");
   if (first_bands < 0) return fail("first bands must be >= 0 (0 = all candidates at once)");
-  if (threads < 0) return fail("threads must be >= 0 (0 = automatic)");
+  if (threads < 0 || threads > kMaxThreads)
+    return fail("threads must be in 0.." + std::to_string(kMaxThreads) + " (0 = automatic)");
   if (floor_window_bins < 21) return fail("floor window must be >= 21 bins");
   if (!(line_p_value > 0.0 && line_p_value < 1.0)) return fail("line p-value must be in (0, 1)");
   if (!(min_modulation >= 0.0 && min_modulation < 10.0))
@@ -227,12 +229,22 @@ Diagnosis Diagnose(const Record& record,
                      std::to_string(static_cast<long>(std::ceil(min_duration * fs))) +
                      " samples) to resolve the cage rate and the noise floor");
 
+  // Refuses non-finite and constant records; spikes and clipping become warnings.
+  d.warnings = CheckRecord(record.samples).warnings;
   d.statistics = ComputeTimeStatistics(record.samples);
 
-  std::vector<double> whitened;
+  // The analysis is scale-free (every line is tested against its own floor); values far from 1
+  // are rescaled so that squares and spectra neither overflow nor underflow.
+  std::vector<double> rescaled, whitened;
   std::span<const double> x(record.samples);
+  if (d.statistics.peak > 1e30 || d.statistics.peak < 1e-30) {
+    rescaled.resize(record.samples.size());
+    for (size_t i = 0; i < rescaled.size(); ++i)
+      rescaled[i] = record.samples[i] / d.statistics.peak;
+    x = rescaled;
+  }
   if (options.prewhiten) {
-    whitened = CepstrumPrewhiten(record.samples);
+    whitened = CepstrumPrewhiten(x);
     x = whitened;
   }
   EnvelopeAnalyzer analyzer(x, fs);
@@ -294,7 +306,9 @@ Diagnosis Diagnose(const Record& record,
   std::optional<double> shaft_measured;
   if (options.speed_search > 0.0) {
     if (options.prewhiten) {
-      EnvelopeAnalyzer raw(record.samples, fs);
+      EnvelopeAnalyzer raw(rescaled.empty() ? std::span<const double>(record.samples)
+                                            : std::span<const double>(rescaled),
+                           fs);
       shaft_measured = EstimateShaftSpeed(raw, shaft_hz, options.speed_search);
     } else {
       shaft_measured = EstimateShaftSpeed(analyzer, shaft_hz, options.speed_search);
@@ -578,6 +592,8 @@ std::string Diagnosis::ToJson(int indent) const {
     faults_json.push_back(fj);
   }
   j["faults"] = faults_json;
+  j["confident"] = warnings.empty();
+  j["warnings"] = warnings;
   j["band"] = {{"low_hz", band.low_hz},
                {"high_hz", band.high_hz},
                {"center_hz", band.center_hz()},
@@ -691,6 +707,7 @@ std::string Diagnosis::BriefReport() const {
                 verdict.c_str(),
                 options.false_alarm_probability);
   out += buf;
+  for (const auto& w : warnings) out += "WARNING (verdict not confident): " + w + "\n";
   out +=
       "  rank component        detected  p-value    score/threshold  harm.  sideb.  fundamental\n";
   int rank = 1;

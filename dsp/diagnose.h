@@ -61,6 +61,7 @@ struct DiagnoseOptions {
   // the bands are compared in the same fixed order as with one thread, so the Diagnosis is
   // bit-identical for every thread count; only the wall time changes.
   int threads = 0;
+  static constexpr int kMaxThreads = 64;
 
   bool IsValid(std::string* error) const;
 };
@@ -69,6 +70,9 @@ struct DiagnoseOptions {
 struct Diagnosis {
   std::string verdict;  // "healthy", "outer_race", "inner_race", "rolling_element", "cage"
   std::vector<FamilyDetection> faults;  // all four families, most significant first
+  // Why the verdict should not be trusted (clipping, spikes: dsp/record_check.h); empty when the
+  // record looks sound. Records that cannot be analysed at all are refused (InputError).
+  std::vector<std::string> warnings;
   std::vector<FaultFamily> families;    // kinematic lines searched (same order as kFaultComponents)
 
   Band band;                   // demodulation band used for the reported SES
@@ -113,7 +117,8 @@ struct Diagnosis {
 };
 
 // Throws InputError for a non-positive shaft speed or sample rate, fault frequencies above
-// Nyquist, a record too short for the analysis, or invalid options.
+// Nyquist, a record too short for the analysis, a constant record or a non-finite sample
+// (dsp/record_check.h), or invalid options. Spikes and clipping give Diagnosis::warnings.
 Diagnosis Diagnose(const Record& record,
                    const BearingGeometry& bearing,
                    double shaft_hz,

@@ -28,6 +28,17 @@ void AppendFeCases(std::vector<CaseResult>* results, const std::string& filter);
 // Appends the contact cases (hertz, friction, energy, ...).
 void AppendContactCases(std::vector<CaseResult>* results, const std::string& filter);
 
+// Appends the case comparing `computed` with `reference`: relative error, or absolute with
+// `absolute` (the note then says so); it passes when the error is finite and within tolerance.
+void AddCase(std::vector<CaseResult>* results,
+             std::string name,
+             std::string quantity,
+             double reference,
+             double computed,
+             double tolerance,
+             std::string note,
+             bool absolute = false);
+
 // True when a case called `name` is selected by `filter` (empty: every case).
 inline bool CaseSelected(std::string_view name, std::string_view filter) {
   return filter.empty() || name.find(filter) != std::string_view::npos;
