@@ -25,7 +25,7 @@
 //    velocities and would brake them).
 // Clearance: the mesher opens P_d/4 per side (Harris's diametral clearance, docs/SCENE.md).
 //
-// With the scene's model.fidelity = "hybrid" (DESIGN.md level 3) only the outer ring and the
+// With the scene's model.fidelity = "hybrid" (docs/BEARING_MODEL.md) only the outer ring and the
 // adapter are meshed (MeshBearingHousing; same tie, fixed bottom, damping and sensors as above)
 // and the rollers, cage and inner ring are rigid bodies with exact profiles in one
 // HybridRollers contributor (sim/bearing/hybrid_rollers.h): Palmgren contact with the raceway

@@ -106,7 +106,7 @@ struct SceneRun {
   double output_rate_hz = 20000.0;
 };
 
-// Which model `spall simulate` builds (DESIGN.md "Fidelity ladder"):
+// Which model `spall simulate` builds (docs/BEARING_MODEL.md):
 //  - "fe": every part meshed (level 4, the paper's model; sim/bearing/model_builder.h);
 //  - "hybrid": outer ring + adapter meshed, rollers / cage / inner ring rigid bodies with exact
 //    profiles and Palmgren contact (level 3, sim/bearing/hybrid_rollers.h). The mesh keys then

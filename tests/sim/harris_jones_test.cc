@@ -1,5 +1,5 @@
-// Harris–Jones load distribution against the references in
-// /work/shared/reference/bearing-notes.md §1 (N205EM as modelled in the paper, l = 9 mm, 10 kN).
+// Harris–Jones load distribution against published references (N205EM as modelled in the paper,
+// l = 9 mm, 10 kN; docs/BEARING_MODEL.md, "Harris–Jones load distribution").
 #include "sim/quasistatic/harris_jones.h"
 
 #include <gtest/gtest.h>
@@ -115,7 +115,7 @@ TEST(HarrisJones, CentrifugalForceOfTheRoller) {
   EXPECT_NEAR(s1200.centrifugal_force_n, 0.123, 0.001);
   const auto s6000 = Solve(0.02, 0.0, 6000.0);
   EXPECT_NEAR(s6000.centrifugal_force_n, 3.08, 0.01);
-  // Speed barely changes the distribution (bearing-notes §1).
+  // Speed barely changes the distribution (Jones: only the centrifugal force).
   EXPECT_NEAR(s6000.q_max_n, s1200.q_max_n, 0.002 * s1200.q_max_n);
 }
 
@@ -143,7 +143,7 @@ TEST(HarrisJones, DiscreteSolutionAgreesWithIntegral) {
 }
 
 TEST(HarrisJones, LongerRollersCarryMorePeakLoad) {
-  // bearing-notes §1 table: l = 6.5 / 15 mm at P_d = 0.02 mm.
+  // Reference values for l = 6.5 / 15 mm at P_d = 0.02 mm.
   LoadDistributionOptions o;
   o.inner_ring_speed_rad_s = 1200.0 * 2.0 * kPi / 60.0;
   LoadDistributionSummary s;
