@@ -2,7 +2,7 @@
 // explicit solver with sections, constraints, loads and contact pairs, as in the paper
 // (Dynamic Analysis of Rolling Bearings with Roller Spalling Defects Based on Explicit FE, §2-3).
 //
-// What is built (docs/BEARING_MODEL.md, "The FE model", says why):
+// What is built (docs/BEARING_MODEL.md, "The full-FE model", says why):
 //  - Sections: plane strain, thickness = scene `thickness_mm` (the effective roller length l), so
 //    every force in the model is for the WHOLE section: the radial load is the scene's 10 kN
 //    itself, and contact forces compare directly with Harris–Jones roller loads for length l.

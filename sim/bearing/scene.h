@@ -115,7 +115,7 @@ struct SceneModel {
   std::string fidelity = "fe";
   // "elastic": the adapter is FE (steel, scene materials.adapter); "rigid": every adapter node
   // fixed, so the outer ring is held rigidly over the seat (Table 1 gives the adapter no
-  // material; docs/BEARING_MODEL.md, "Harris-Jones with the real housing").
+  // material; docs/BEARING_MODEL.md, "Limits").
   std::string adapter = "elastic";
   // Roller-race contact of the full FE ("fe" only): "smooth" (roller rims and raceways as cubic
   // B-splines through their nodes, docs/CONTACT.md "Smooth surfaces": C2 contact forces, energy

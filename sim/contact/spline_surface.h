@@ -2,9 +2,9 @@
 //
 // Why: a point contact force applied to FE nodes with the chord's linear weights (1 - xi, xi), or
 // the arc contact's, changes its slope every time the contact crosses a node. On the full-FE
-// bearing that broadband excitation drove the rings' 5-8 kHz modes to ~1000 m/s^2 at the sensor
-// (docs/BEARING_MODEL.md, "What drives that noise"). The hybrid model showed it directly: spreading
-// its raceway contact over two nodes with a hat is 10x louder than a C2 kernel over four.
+// bearing that broadband excitation drives the rings' 5-8 kHz modes (docs/BEARING_MODEL.md,
+// "Limits"); on the hybrid model, spreading its raceway contact over two nodes with a hat is 10x
+// louder than a C2 kernel over four.
 //
 // What: the nodes of a smooth part of a surface (both neighbouring segments arcs of the same sense:
 // a roller rim, a raceway) are the control points of a uniform cubic B-spline c(u). On nodes
