@@ -20,6 +20,40 @@
 
 namespace spallkit::dsp {
 
+const char* VerdictName(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kHealthy:
+      return "healthy";
+    case Verdict::kOuterRace:
+      return "outer_race";
+    case Verdict::kInnerRace:
+      return "inner_race";
+    case Verdict::kRollingElement:
+      return "rolling_element";
+    case Verdict::kCage:
+      return "cage";
+  }
+  return "?";
+}
+
+Verdict VerdictOf(FaultComponent component) {
+  switch (component) {
+    case FaultComponent::kOuterRace:
+      return Verdict::kOuterRace;
+    case FaultComponent::kInnerRace:
+      return Verdict::kInnerRace;
+    case FaultComponent::kRollingElement:
+      return Verdict::kRollingElement;
+    case FaultComponent::kCage:
+      return Verdict::kCage;
+  }
+  return Verdict::kHealthy;
+}
+
+const char* BandSelectionName(BandSelection selection) {
+  return selection == BandSelection::kFaultEvidence ? "fault_evidence" : "kurtogram";
+}
+
 bool DiagnoseOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) {
     if (error) *error = m;
@@ -477,10 +511,10 @@ Diagnosis Diagnose(const Record& record,
     any_significant |= det.p_value <= options.false_alarm_probability;
   if (any_significant) {
     chosen = std::move(*best);
-    d.band_selection = "fault_evidence";
+    d.band_selection = BandSelection::kFaultEvidence;
   } else {
     chosen = std::move(*kurt_choice);
-    d.band_selection = "kurtogram";
+    d.band_selection = BandSelection::kKurtogram;
   }
   d.band = chosen.node.band();
   d.band_kurtosis = chosen.node.kurtosis;
@@ -528,7 +562,7 @@ Diagnosis Diagnose(const Record& record,
   }
   if (d.measured_f_b_hz) d.f_b_slip_percent = (*d.measured_f_b_hz / kin.f_b_hz - 1.0) * 100.0;
   if (d.measured_f_c_hz) d.f_c_slip_percent = (*d.measured_f_c_hz / kin.cage_hz - 1.0) * 100.0;
-  d.verdict = d.faults.front().detected ? ComponentName(d.faults.front().component) : "healthy";
+  d.verdict = d.faults.front().detected ? VerdictOf(d.faults.front().component) : Verdict::kHealthy;
   return d;
 }
 
@@ -554,7 +588,7 @@ double Finite(double v) { return std::isfinite(v) ? v : -1.0; }
 std::string Diagnosis::ToJson(int indent) const {
   using nlohmann::ordered_json;
   ordered_json j;
-  j["verdict"] = verdict;
+  j["verdict"] = VerdictName(verdict);
   ordered_json faults_json = ordered_json::array();
   for (const auto& f : faults) {
     ordered_json fj;
@@ -600,7 +634,7 @@ std::string Diagnosis::ToJson(int indent) const {
                {"bandwidth_hz", band.width_hz()},
                {"kurtogram_level", band_level},
                {"kurtosis", band_kurtosis},
-               {"selection", band_selection},
+               {"selection", BandSelectionName(band_selection)},
                {"candidates", candidate_bands},
                {"searched", searched_bands}};
   j["kurtogram"] = {{"best_center_hz", kurtogram_best.center_hz},
@@ -697,14 +731,14 @@ std::string Diagnosis::BriefReport() const {
                 band.width_hz(),
                 band_level,
                 band_kurtosis,
-                band_selection == "kurtogram" ? "kurtogram" : "fault evidence",
+                band_selection == BandSelection::kKurtogram ? "kurtogram" : "fault evidence",
                 candidate_bands,
                 searched_bands);
   out += buf;
   std::snprintf(buf,
                 sizeof buf,
                 "VERDICT: %s   (false-alarm probability %.2g per record)\n",
-                verdict.c_str(),
+                VerdictName(verdict),
                 options.false_alarm_probability);
   out += buf;
   for (const auto& w : warnings) out += "WARNING (verdict not confident): " + w + "\n";
