@@ -84,10 +84,13 @@ struct SplineContactPoint {
 // Newton from the start in *point (spans and parameters); moves across spans as the parameters
 // leave [0, 1]. Returns false when it leaves the valid spans or does not converge; then *point
 // keeps the last iterate.
-bool SplineClosestPoints(const ContactSurface& slave,
-                         const SplineSurface& slave_spline,
-                         const ContactSurface& master,
-                         const SplineSurface& master_spline,
+// A surface and its B-spline view.
+struct SplineSide {
+  const ContactSurface& surface;
+  const SplineSurface& spline;
+};
+bool SplineClosestPoints(SplineSide slave,
+                         SplineSide master,
                          const double* x,
                          const double* y,
                          SplineContactPoint* point);
