@@ -27,14 +27,28 @@
 #include <vector>
 
 #include "core/bearing.h"
+#include "core/record.h"
 #include "dsp/detection.h"
 #include "dsp/envelope.h"
 #include "dsp/fault_bands.h"
 #include "dsp/kurtogram.h"
-#include "core/record.h"
 #include "dsp/statistics.h"
 
 namespace spallkit::dsp {
+
+// The conclusion of a diagnosis. Strings ("healthy", "outer_race", "inner_race",
+// "rolling_element", "cage") only at the JSON/CLI boundary: VerdictName / ParseVerdict.
+enum class Verdict { kHealthy, kOuterRace, kInnerRace, kRollingElement, kCage };
+inline constexpr int kVerdicts = 5;
+const char* VerdictName(Verdict verdict);
+// The verdict that names a fault component.
+Verdict VerdictOf(FaultComponent component);
+
+// How the reported demodulation band was chosen: the band with the strongest family evidence, or
+// (no family significant anywhere) the kurtogram's choice among the candidates. JSON strings
+// "fault_evidence" / "kurtogram".
+enum class BandSelection { kFaultEvidence, kKurtogram };
+const char* BandSelectionName(BandSelection selection);
 
 struct DiagnoseOptions {
   int harmonics = 5;                      // harmonics 1..N of each family
@@ -48,7 +62,10 @@ struct DiagnoseOptions {
   // of `spall diagnose --plot-dir`); Diagnosis::kurtogram is then that one. The bands, the
   // detections and the verdict do not change. Costs a second kurtogram (~10 ms at 48 kHz, 10 s).
   bool kurtogram_map = false;
-  int floor_window_bins = 401;   // running-median window of the SES floor
+  int floor_window_bins = 401;  // running-median window of the SES floor
+  // A family is claimed (detected) only if the record holds this many periods of its
+  // fundamental; otherwise its reason says "not claimed" (the cage on short records).
+  double min_periods = 20.0;
   double line_p_value = 1e-3;    // "individually significant" line
   double min_modulation = 0.12;  // ...and modulating >= this fraction of mean(SE)
   // Search the first_bands candidates of highest spectral kurtosis first, and the others only
@@ -68,17 +85,17 @@ struct DiagnoseOptions {
 
 // Everything the diagnosis found, in SI units (Hz). BriefReport() and ToJson() render it.
 struct Diagnosis {
-  std::string verdict;  // "healthy", "outer_race", "inner_race", "rolling_element", "cage"
+  Verdict verdict = Verdict::kHealthy;  // the first detected family, else healthy
   std::vector<FamilyDetection> faults;  // all four families, most significant first
   // Why the verdict should not be trusted (clipping, spikes: dsp/record_check.h); empty when the
   // record looks sound. Records that cannot be analysed at all are refused (InputError).
   std::vector<std::string> warnings;
-  std::vector<FaultFamily> families;    // kinematic lines searched (same order as kFaultComponents)
+  std::vector<FaultFamily> families;  // kinematic lines searched (same order as kFaultComponents)
 
   Band band;                   // demodulation band used for the reported SES
   double band_kurtosis = 0.0;  // spectral kurtosis of that node
   double band_level = 0.0;     // kurtogram level of that node
-  std::string band_selection;  // "fault_evidence" or "kurtogram"
+  BandSelection band_selection = BandSelection::kKurtogram;
   KurtogramNode kurtogram_best;
   int candidate_bands = 0;    // nodes that met the width/position rule (the Bonferroni count)
   int searched_bands = 0;     // of those, searched before a detection stopped the search

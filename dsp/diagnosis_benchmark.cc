@@ -12,46 +12,14 @@
 
 namespace spallkit::dsp {
 
-const char* TruthClassName(TruthClass c) {
-  switch (c) {
-    case TruthClass::kHealthy:
-      return "healthy";
-    case TruthClass::kOuterRace:
-      return "outer_race";
-    case TruthClass::kInnerRace:
-      return "inner_race";
-    case TruthClass::kRollingElement:
-      return "rolling_element";
-    case TruthClass::kCage:
-      return "cage";
-  }
-  return "?";
-}
-
-std::optional<TruthClass> ParseTruthClass(const std::string& fault) {
-  if (fault == "normal" || fault == "healthy") return TruthClass::kHealthy;
-  if (fault == "inner_race") return TruthClass::kInnerRace;
-  if (fault.rfind("outer_race", 0) == 0) return TruthClass::kOuterRace;
+std::optional<Verdict> ParseTruth(const std::string& fault) {
+  if (fault == "normal" || fault == "healthy") return Verdict::kHealthy;
+  if (fault == "inner_race") return Verdict::kInnerRace;
+  if (fault.rfind("outer_race", 0) == 0) return Verdict::kOuterRace;
   if (fault == "ball" || fault == "roller" || fault == "rolling_element")
-    return TruthClass::kRollingElement;
-  if (fault == "cage") return TruthClass::kCage;
+    return Verdict::kRollingElement;
+  if (fault == "cage") return Verdict::kCage;
   return std::nullopt;
-}
-
-TruthClass ClassOfVerdict(const Diagnosis& d) {
-  const FamilyDetection* best = d.Best();
-  if (!best || !best->detected) return TruthClass::kHealthy;
-  switch (best->component) {
-    case FaultComponent::kOuterRace:
-      return TruthClass::kOuterRace;
-    case FaultComponent::kInnerRace:
-      return TruthClass::kInnerRace;
-    case FaultComponent::kRollingElement:
-      return TruthClass::kRollingElement;
-    case FaultComponent::kCage:
-      return TruthClass::kCage;
-  }
-  return TruthClass::kHealthy;
 }
 
 namespace {
@@ -82,7 +50,7 @@ LabelledRecord ParseEntry(const json& e,
   if (!e.contains("fault") || !e["fault"].is_string())
     Bad(manifest, i, "key 'fault' must be a string (the ground truth)");
   r.fault = e["fault"].get<std::string>();
-  const auto truth = ParseTruthClass(r.fault);
+  const auto truth = ParseTruth(r.fault);
   if (!truth)
     Bad(manifest,
         i,
@@ -168,7 +136,7 @@ BenchmarkResult RunDiagnosisBenchmark(const std::vector<LabelledRecord>& records
       const auto t0 = std::chrono::steady_clock::now();
       const Diagnosis d = Diagnose(record, rec.bearing, rec.shaft_hz, options);
       row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      row.verdict = ClassOfVerdict(d);
+      row.verdict = d.verdict;
       row.confident = d.warnings.empty();
       row.band = d.band;
       row.measured_shaft_hz = d.measured_shaft_hz;
@@ -188,10 +156,9 @@ BenchmarkResult RunDiagnosisBenchmark(const std::vector<LabelledRecord>& records
     } else {
       ++result.confusion[static_cast<int>(rec.truth)][static_cast<int>(*row.verdict)];
       result.correct += *row.verdict == rec.truth;
-      result.false_alarms +=
-          rec.truth == TruthClass::kHealthy && *row.verdict != TruthClass::kHealthy;
+      result.false_alarms += rec.truth == Verdict::kHealthy && *row.verdict != Verdict::kHealthy;
     }
-    result.healthy_records += rec.truth == TruthClass::kHealthy;
+    result.healthy_records += rec.truth == Verdict::kHealthy;
     result.total_seconds += row.seconds;
     result.rows.push_back(std::move(row));
   }
@@ -218,7 +185,7 @@ std::string BenchmarkResult::BriefReport() const {
                     sizeof buf,
                     "%-40s %-16s REFUSED: %s\n",
                     r.record.name.c_str(),
-                    TruthClassName(r.record.truth),
+                    VerdictName(r.record.truth),
                     r.error.c_str());
       out += buf;
       continue;
@@ -230,8 +197,8 @@ std::string BenchmarkResult::BriefReport() const {
                   sizeof buf,
                   "%-40s %-16s %-16s %-9.2g %-16s %-13s %.1f%s%s\n",
                   r.record.name.c_str(),
-                  TruthClassName(r.record.truth),
-                  TruthClassName(*r.verdict),
+                  VerdictName(r.record.truth),
+                  VerdictName(*r.verdict),
                   r.p_value,
                   band,
                   rates,
@@ -243,18 +210,18 @@ std::string BenchmarkResult::BriefReport() const {
   out += "\nconfusion matrix (rows: truth, columns: verdict)\n";
   std::snprintf(buf, sizeof buf, "%-16s", "");
   out += buf;
-  for (int v = 0; v < kTruthClasses; ++v) {
-    std::snprintf(buf, sizeof buf, " %15s", TruthClassName(static_cast<TruthClass>(v)));
+  for (int v = 0; v < kVerdicts; ++v) {
+    std::snprintf(buf, sizeof buf, " %15s", VerdictName(static_cast<Verdict>(v)));
     out += buf;
   }
   out += "\n";
-  for (int t = 0; t < kTruthClasses; ++t) {
+  for (int t = 0; t < kVerdicts; ++t) {
     int total = 0;
-    for (int v = 0; v < kTruthClasses; ++v) total += confusion[t][v];
+    for (int v = 0; v < kVerdicts; ++v) total += confusion[t][v];
     if (total == 0) continue;
-    std::snprintf(buf, sizeof buf, "%-16s", TruthClassName(static_cast<TruthClass>(t)));
+    std::snprintf(buf, sizeof buf, "%-16s", VerdictName(static_cast<Verdict>(t)));
     out += buf;
-    for (int v = 0; v < kTruthClasses; ++v) {
+    for (int v = 0; v < kVerdicts; ++v) {
       std::snprintf(buf, sizeof buf, " %15d", confusion[t][v]);
       out += buf;
     }
@@ -283,8 +250,8 @@ std::string BenchmarkResult::ToJson(int indent) const {
     ordered_json rj;
     rj["file"] = r.record.name;
     rj["fault"] = r.record.fault;
-    rj["truth"] = TruthClassName(r.record.truth);
-    rj["verdict"] = r.verdict ? ordered_json(TruthClassName(*r.verdict)) : ordered_json(nullptr);
+    rj["truth"] = VerdictName(r.record.truth);
+    rj["verdict"] = r.verdict ? ordered_json(VerdictName(*r.verdict)) : ordered_json(nullptr);
     rj["correct"] = r.verdict && *r.verdict == r.record.truth;
     rj["error"] = r.error;
     rj["confident"] = r.confident;
@@ -302,13 +269,12 @@ std::string BenchmarkResult::ToJson(int indent) const {
   }
   j["records"] = rows_json;
   ordered_json classes = ordered_json::array();
-  for (int c = 0; c < kTruthClasses; ++c)
-    classes.push_back(TruthClassName(static_cast<TruthClass>(c)));
+  for (int c = 0; c < kVerdicts; ++c) classes.push_back(VerdictName(static_cast<Verdict>(c)));
   j["classes"] = classes;
   ordered_json m = ordered_json::array();
-  for (int t = 0; t < kTruthClasses; ++t) {
+  for (int t = 0; t < kVerdicts; ++t) {
     ordered_json row = ordered_json::array();
-    for (int v = 0; v < kTruthClasses; ++v) row.push_back(confusion[t][v]);
+    for (int v = 0; v < kVerdicts; ++v) row.push_back(confusion[t][v]);
     m.push_back(row);
   }
   j["confusion"] = m;  // [truth][verdict], in the order of "classes"

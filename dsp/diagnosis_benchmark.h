@@ -28,20 +28,15 @@
 
 namespace spallkit::dsp {
 
-// The classes a benchmark counts: the four fault families plus healthy.
-enum class TruthClass { kHealthy, kOuterRace, kInnerRace, kRollingElement, kCage };
-inline constexpr int kTruthClasses = 5;
-const char* TruthClassName(TruthClass c);
-// "normal"/"healthy", "inner_race", "outer_race*", "ball"/"roller"/"rolling_element", "cage";
-// nullopt for anything else.
-std::optional<TruthClass> ParseTruthClass(const std::string& fault);
-TruthClass ClassOfVerdict(const Diagnosis& d);
+// The ground truth of a manifest's "fault": "normal"/"healthy", "inner_race", "outer_race*",
+// "ball"/"roller"/"rolling_element", "cage"; nullopt for anything else.
+std::optional<Verdict> ParseTruth(const std::string& fault);
 
 struct LabelledRecord {
   std::string path;   // resolved file path
   std::string name;   // the manifest's file entry
   std::string fault;  // the manifest's fault string
-  TruthClass truth = TruthClass::kHealthy;
+  Verdict truth = Verdict::kHealthy;
   BearingGeometry bearing;
   double shaft_hz = 0.0;
   double sample_rate_hz = 0.0;  // 0: from the file
@@ -53,7 +48,7 @@ std::vector<LabelledRecord> ReadBenchmarkManifest(const std::string& manifest_pa
 
 struct BenchmarkRow {
   LabelledRecord record;
-  std::optional<TruthClass> verdict;  // nullopt: refused (error says why)
+  std::optional<Verdict> verdict;  // nullopt: refused (error says why)
   std::string error;
   bool confident = true;  // no record warnings
   double p_value = 1.0;   // of the best-ranked family
@@ -68,7 +63,7 @@ struct BenchmarkRow {
 
 struct BenchmarkResult {
   std::vector<BenchmarkRow> rows;
-  int confusion[kTruthClasses][kTruthClasses] = {};  // [truth][verdict]
+  int confusion[kVerdicts][kVerdicts] = {};  // [truth][verdict]
   int refused = 0;
   int correct = 0;
   int false_alarms = 0;  // healthy truth, fault verdict

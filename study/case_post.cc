@@ -64,7 +64,7 @@ void AddDiagnosis(const sim::Scene& scene, h5::File* file, nlohmann::ordered_jso
                                              scene.geometry.bearing,
                                              scene.operation.inner_ring_speed_rad_s / (2 * kPi),
                                              options);
-      verdict = d.verdict;
+      verdict = dsp::VerdictName(d.verdict);
       if (d.measured_f_b_hz) f_b = *d.measured_f_b_hz;
     } catch (const InputError&) {
       // Too short or otherwise not diagnosable: the label says so.

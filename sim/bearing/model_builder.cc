@@ -312,14 +312,13 @@ std::vector<std::string> BearingModel::Warnings() const {
   if (scene_.model.race_contact != "faceted") {
     // The curved race contact rolls the meshed rims as circles (measured at mu 0.01 on 0.5 and
     // 1.0 mm meshes), but on finer rims dented loaded nodes kink the fixed-curvature arcs and the
-    // blend has created energy (0.25 mm, 6000 rpm: 29 % at 4 ms in session 8; after session 9's
-    // weight share and ridge points 16.9 % at 24.5 ms; docs/CONTACT.md).
+    // blend creates energy (docs/CONTACT.md, "Limits").
     if (rim_spacing < kCurvedMinRimSpacing) {
       std::ostringstream os;
       os.precision(3);
       os << "the curved race contact on rims of " << facets << " facets (" << rim_spacing * 1e3
-         << " mm) has created energy where a loaded rim node dents "
-         << "(docs/CONTACT.md, open defect: 16.9 % at 24.5 ms on the 0.25 mm mesh at 6000 rpm); "
+         << " mm) creates energy where a loaded rim node dents "
+         << "(docs/CONTACT.md, \"Limits\"); "
          << "the run stops if the balance passes solver.max_energy_error_percent; "
          << "model.race_contact = \"smooth\" (the default) balances on this mesh";
       out.push_back(os.str());

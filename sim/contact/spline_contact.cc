@@ -40,7 +40,7 @@ void SplineContact::Find(ContactPass& pass, const double* x, const double* y) {
   // Newton from last step's point; if that fails (first contact, a spall passing), from the
   // slave control node nearest the master.
   SplineContactPoint point = point_;
-  bool found = found_ && SplineClosestPoints(slave, ss, master, ms, x, y, &point);
+  bool found = found_ && SplineClosestPoints({slave, ss}, {master, ms}, x, y, &point);
   if (!found) {
     int best = -1, best_segment = -1;
     double best_gap = kInf, best_xi = 0.0;
@@ -59,7 +59,7 @@ void SplineContact::Find(ContactPass& pass, const double* x, const double* y) {
       point.t = ss.valid_span[best] ? 0.0 : 1.0;
       point.master_span = master.segment_a[best_segment];
       point.s = std::clamp(best_xi, 0.0, 1.0);
-      found = SplineClosestPoints(slave, ss, master, ms, x, y, &point);
+      found = SplineClosestPoints({slave, ss}, {master, ms}, x, y, &point);
     }
   }
   found_ = found;

@@ -24,6 +24,44 @@ fe::Section Steel() {
   return s;
 }
 
+// The Hertz cases' disc: centred at (0, cy), a core of 40 quads per side and 12 graded layers.
+fe::DiscSpec HertzDisc(double radius, double cy) {
+  fe::DiscSpec ds;
+  ds.cy = cy;
+  ds.radius = radius;
+  ds.n_core = 40;
+  ds.n_radial = 12;
+  ds.radial_ratio = 0.3;
+  ds.theta0 = -kPi / 2;
+  return ds;
+}
+
+// Global mass damping at `ratio` of critical around `frequency_hz` (the quasi-static cases relax
+// with it).
+solver::SolverOptions MassDamped(double ratio, double frequency_hz) {
+  solver::SolverOptions so;
+  so.mass_damping_ratio = ratio;
+  so.damping_frequency = frequency_hz;
+  return so;
+}
+
+// Bulk-modulus penalty at scale f with 20 % of critical normal damping.
+contact::ContactPairOptions DampedPenalty(double f) {
+  contact::ContactPairOptions co;
+  co.penalty_scale = f;
+  co.normal_damping_ratio = 0.2;
+  return co;
+}
+
+// A pair between two curves of the steel mesh.
+contact::ContactPair SteelPair(const fe::Mesh& mesh,
+                               const std::string& slave,
+                               const std::string& master,
+                               const contact::ContactPairOptions& co) {
+  return contact::MakeContactPair(
+      mesh, slave, master, {contact::BulkModulus(kE, kNu)}, kThickness, co);
+}
+
 // Moves nodes along circles about (cx, cy): theta' = theta - (a / m) sin(m (theta - theta_c)).
 // The map is monotone for a < 1 and shrinks the angular spacing by (1 - a) at theta_c (and, for
 // m = 2, at theta_c + pi): cheap refinement of a disc rim or a bore towards the contact.
@@ -102,12 +140,7 @@ void HertzDiscBetweenFlats(std::vector<CaseResult>* results) {
   const double R = 0.01, e_star = kE / (1 - kNu * kNu);
   const double b_target = 0.4e-3;
   const double P = b_target * b_target * kPi * e_star / (4 * R);  // N/m
-  fe::DiscSpec ds;
-  ds.radius = R;
-  ds.n_core = 40;
-  ds.n_radial = 12;
-  ds.radial_ratio = 0.3;
-  ds.theta0 = -kPi / 2;
+  const fe::DiscSpec ds = HertzDisc(R, 0.0);
   fe::Mesh disc = fe::MakeDisc("disc", ds);
   RefineAngularly(&disc, 0.0, 0.0, -kPi / 2, 0.8, 2);
   fe::RectangleSpec top_spec{.x0 = -3e-3, .y0 = R, .width = 6e-3, .height = 1e-3, .nx = 6, .ny = 1};
@@ -118,18 +151,11 @@ void HertzDiscBetweenFlats(std::vector<CaseResult>* results) {
   const int rim_top = disc.curves.at("disc.outer").nodes[2 * ds.n_core];
   const int rim_bottom = disc.curves.at("disc.outer").nodes[0];
 
-  solver::SolverOptions so;
-  so.mass_damping_ratio = 0.5;
-  so.damping_frequency = 50e3;
-  solver::ExplicitSolver solver(mesh, {Steel(), Steel(), Steel()}, so);
-  contact::ContactPairOptions co;
-  co.penalty_scale = 5.0;  // stiff: penetration << Hertz approach
-  co.normal_damping_ratio = 0.2;
-  const double K = contact::BulkModulus(kE, kNu);
-  contact::ContactPair upper =
-      contact::MakeContactPair(mesh, "disc.outer", "top.bottom", {K}, kThickness, co);
-  contact::ContactPair lower =
-      contact::MakeContactPair(mesh, "disc.outer", "bottom.top", {K}, kThickness, co);
+  solver::ExplicitSolver solver(mesh, {Steel(), Steel(), Steel()}, MassDamped(0.5, 50e3));
+  // Stiff: penetration << Hertz approach.
+  const contact::ContactPairOptions co = DampedPenalty(5.0);
+  contact::ContactPair upper = SteelPair(mesh, "disc.outer", "top.bottom", co);
+  contact::ContactPair lower = SteelPair(mesh, "disc.outer", "bottom.top", co);
   solver.AddContributor(&upper);
   solver.AddContributor(&lower);
   const double ramp = 80e-6, end = 130e-6, force = P * kThickness;
@@ -185,13 +211,7 @@ void HertzDiscInBore(std::vector<CaseResult>* results) {
   const double b_target = 0.6e-3;
   const double P = b_target * b_target * kPi * e_star / (4 * R);
   const double gap = 1e-6;  // initial clearance at the bottom
-  fe::DiscSpec ds;
-  ds.cy = -(R2 - R1) + gap;
-  ds.radius = R1;
-  ds.n_core = 40;
-  ds.n_radial = 12;
-  ds.radial_ratio = 0.3;
-  ds.theta0 = -kPi / 2;
+  const fe::DiscSpec ds = HertzDisc(R1, -(R2 - R1) + gap);
   fe::Mesh disc = fe::MakeDisc("disc", ds);
   RefineAngularly(&disc, ds.cx, ds.cy, -kPi / 2, 0.8, 1);
   fe::AnnulusSpec as;
@@ -205,17 +225,10 @@ void HertzDiscInBore(std::vector<CaseResult>* results) {
   RefineAngularly(&ring, 0.0, 0.0, -kPi / 2, 0.8, 1);
   const fe::Mesh mesh = fe::MergeMeshes({disc, ring});
 
-  solver::SolverOptions so;
-  so.mass_damping_ratio = 0.5;
-  so.damping_frequency = 50e3;
-  solver::ExplicitSolver solver(mesh, {Steel(), Steel()}, so);
+  solver::ExplicitSolver solver(mesh, {Steel(), Steel()}, MassDamped(0.5, 50e3));
   solver.FixNodes(mesh.node_sets.at("ring.outer"), true, true);
-  contact::ContactPairOptions co;
-  co.penalty_scale = 5.0;
-  co.normal_damping_ratio = 0.2;
-  const double K = contact::BulkModulus(kE, kNu);
-  contact::ContactPair pair =
-      contact::MakeContactPair(mesh, "disc.outer", "ring.inner", {K}, kThickness, co);
+  const contact::ContactPairOptions co = DampedPenalty(5.0);
+  contact::ContactPair pair = SteelPair(mesh, "disc.outer", "ring.inner", co);
   solver.AddContributor(&pair);
   const double ramp = 80e-6, end = 130e-6, force = P * kThickness;
   solver.AddRigidBody(Plate("load", mesh.node_sets.at("disc.center"), true, nullptr, [=](double t) {
@@ -244,19 +257,13 @@ void FrictionBlock(std::vector<CaseResult>* results) {
       .x0 = 0.0, .y0 = 0.0, .width = 4e-3, .height = 2e-3, .nx = 8, .ny = 4};
   const fe::Mesh mesh = fe::MergeMeshes(
       {fe::MakeRectangle("base", base_spec), fe::MakeRectangle("block", block_spec)});
-  solver::SolverOptions so;
-  so.mass_damping_ratio = 0.3;
-  so.damping_frequency = 200e3;
+  solver::SolverOptions so = MassDamped(0.3, 200e3);
   so.output_every_steps = 1;
   solver::ExplicitSolver solver(mesh, {Steel(), Steel()}, so);
   solver.FixNodes(mesh.node_sets.at("base.bottom"), true, true);
-  contact::ContactPairOptions co;
-  co.penalty_scale = 1.0;
-  co.normal_damping_ratio = 0.2;
+  contact::ContactPairOptions co = DampedPenalty(1.0);
   co.friction = {.static_coefficient = mu_s, .dynamic_coefficient = mu_d, .decay = 1.0};
-  const double K = contact::BulkModulus(kE, kNu);
-  contact::ContactPair pair =
-      contact::MakeContactPair(mesh, "block.bottom", "base.top", {K}, kThickness, co);
+  contact::ContactPair pair = SteelPair(mesh, "block.bottom", "base.top", co);
   solver.AddContributor(&pair);
   const double t_press = 20e-6, t_hold = 60e-6, t_slide = 100e-6, end = 130e-6;
   auto tangential = [=](double t) {
@@ -346,10 +353,8 @@ void ElasticImpact(std::vector<CaseResult>* results, bool discs) {
   solver::ExplicitSolver solver(mesh, {Steel(), Steel()}, so);
   contact::ContactPairOptions co;  // bulk modulus law, f = 0.1, frictionless
   co.symmetric = true;
-  const double K = contact::BulkModulus(kE, kNu);
-  contact::ContactPair pair =
-      discs ? contact::MakeContactPair(mesh, "left.outer", "right.outer", {K}, kThickness, co)
-            : contact::MakeContactPair(mesh, "left.right", "right.left", {K}, kThickness, co);
+  contact::ContactPair pair = discs ? SteelPair(mesh, "left.outer", "right.outer", co)
+                                    : SteelPair(mesh, "left.right", "right.left", co);
   solver.AddContributor(&pair);
   solver.SetRigidVelocity(mesh.node_sets.at("left.all"), v, 0.0, 0.0, 0.0, 0.0);
   solver.SetRigidVelocity(mesh.node_sets.at("right.all"), -v, 0.0, 0.0, 0.0, 0.0);

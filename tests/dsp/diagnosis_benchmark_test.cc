@@ -65,12 +65,12 @@ TEST(DiagnosisBenchmark, ConfusionMatrixOnASyntheticFolder) {
   const fs::path dir = MakeFolder();
   const auto set = ReadBenchmarkManifest((dir / "manifest.json").string());
   ASSERT_EQ(set.size(), 3u);
-  EXPECT_EQ(set[0].truth, TruthClass::kOuterRace);
-  EXPECT_EQ(set[1].truth, TruthClass::kHealthy);
+  EXPECT_EQ(set[0].truth, Verdict::kOuterRace);
+  EXPECT_EQ(set[1].truth, Verdict::kHealthy);
   EXPECT_NEAR(set[0].shaft_hz, 1797 / 60.0, 1e-12);
   const BenchmarkResult r = RunDiagnosisBenchmark(set);
-  const int outer = static_cast<int>(TruthClass::kOuterRace);
-  const int healthy = static_cast<int>(TruthClass::kHealthy);
+  const int outer = static_cast<int>(Verdict::kOuterRace);
+  const int healthy = static_cast<int>(Verdict::kHealthy);
   EXPECT_EQ(r.confusion[outer][outer], 1);
   EXPECT_EQ(r.confusion[healthy][healthy], 1);
   EXPECT_EQ(r.refused, 1);  // the constant record

@@ -124,7 +124,7 @@ TEST(DiagnoseBadInput, HugeScaleGivesTheSameVerdictAsUnitScale) {
   for (double& v : r.samples) v *= 1e250;
   const Diagnosis huge = Diagnose(r, CatalogBearing("6205"), 1797 / 60.0);
   EXPECT_EQ(huge.verdict, unit.verdict);
-  EXPECT_EQ(huge.verdict, "outer_race");
+  EXPECT_EQ(huge.verdict, Verdict::kOuterRace);
 }
 
 TEST(DiagnoseBadInput, ConstantRecordAndTooManyThreadsAreRefused) {
