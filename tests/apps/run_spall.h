@@ -17,13 +17,18 @@ namespace spallkit::testing {
 struct SpallResult {
   int code = -1;
   std::string out, err;
+  bool timed_out() const { return code == 124 || code == 137; }  // timeout(1)'s codes
 };
 
-inline SpallResult RunSpall(const std::string& args) {
+// timeout_s > 0: killed after that many seconds (timeout(1); a hang then fails the test
+// instead of stopping the test run).
+inline SpallResult RunSpall(const std::string& args, int timeout_s = 0) {
   // Per process: ctest runs every TEST of a program as its own process, in parallel.
   const std::string err_path = std::filesystem::temp_directory_path() /
                                ("spall_cli_err_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmd = std::string(SPALLKIT_SPALL_EXE) + " " + args + " 2>" + err_path;
+  const std::string limit =
+      timeout_s > 0 ? "timeout -k 5 " + std::to_string(timeout_s) + " " : std::string();
+  const std::string cmd = limit + SPALLKIT_SPALL_EXE + " " + args + " 2>" + err_path;
   SpallResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (p == nullptr) return r;
@@ -32,8 +37,11 @@ inline SpallResult RunSpall(const std::string& args) {
   while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
   const int status = pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_path);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  {
+    std::ifstream e(err_path);
+    r.err.assign(std::istreambuf_iterator<char>(e), {});
+  }
+  std::filesystem::remove(err_path);
   return r;
 }
 
