@@ -476,8 +476,11 @@ Scene ParseScene(const std::string& toml_text,
   {
     Section s = top.Table("model");
     scene.model.fidelity = s.String("fidelity", "fe");
-    if (scene.model.fidelity != "fe" && scene.model.fidelity != "hybrid")
-      s.Fail("fidelity", "expected \"fe\" or \"hybrid\", got \"" + scene.model.fidelity + "\"");
+    if (scene.model.fidelity != "fe" && scene.model.fidelity != "hybrid" &&
+        scene.model.fidelity != "lumped" && scene.model.fidelity != "auto")
+      s.Fail("fidelity",
+             "expected \"fe\", \"hybrid\", \"lumped\" or \"auto\", got \"" +
+                 scene.model.fidelity + "\"");
     scene.model.adapter = s.String("adapter", "elastic");
     if (scene.model.adapter != "elastic" && scene.model.adapter != "rigid")
       s.Fail("adapter", "expected \"elastic\" or \"rigid\", got \"" + scene.model.adapter + "\"");
@@ -565,6 +568,15 @@ Scene ParseScene(const std::string& toml_text,
         for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
         s.Fail("outputs", "unknown output \"" + o + "\" (known: " + list + ")");
       }
+    {
+      Section tol = s.Table("tolerance");
+      SceneTolerance& t = scene.run.tolerance;
+      t.f_b = tol.Number("f_b", t.f_b, kPositive);
+      t.f_c = tol.Number("f_c", t.f_c, kPositive);
+      t.cage_slip = tol.Number("cage_slip", t.cage_slip, kPositive);
+      t.roller_load = tol.Number("roller_load", t.roller_load, kPositive);
+      tol.RejectUnknown();
+    }
     s.RejectUnknown();
   }
   {

@@ -1,7 +1,5 @@
 #include "sim/bearing/simulation.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +12,7 @@
 #include "core/error.h"
 #include "core/hdf5.h"
 #include "core/record_io.h"
+#include "sim/bearing/fidelity_choice.h"
 
 namespace spallkit::sim {
 namespace {
@@ -45,10 +44,6 @@ std::string GetBlob(const std::string& s, size_t* pos, const std::string& path) 
   return blob;
 }
 
-std::string TempName(const std::string& path) {
-  return path + ".solver-" + std::to_string(static_cast<long>(::getpid()));
-}
-
 }  // namespace
 
 std::string SimulationSummary::BriefReport() const {
@@ -70,7 +65,9 @@ std::string SimulationSummary::BriefReport() const {
 
 Simulation::Simulation(const Scene& scene, SimulationOptions options)
     : options_(std::move(options)) {
-  model_ = std::make_unique<BearingModel>(scene, options_.model);
+  FidelityChoice choice;
+  model_ = MakeBearingModel(WithChosenFidelity(scene, &choice), options_.model);
+  fidelity_reason_ = choice.reason;
   RecorderOptions ro;
   ro.output_rate_hz = scene.run.output_rate_hz;
   ro.duration_s = scene.run.duration_s;
@@ -78,25 +75,15 @@ Simulation::Simulation(const Scene& scene, SimulationOptions options)
   ro.fine_factor = options_.fine_factor;
   recorder_ = std::make_unique<Recorder>(*model_, ro);
   Recorder* rec = recorder_.get();
-  model_->solver().SetOutputCallback([rec](const solver::ExplicitSolver& s) { rec->Observe(s); });
+  model_->SetObserver([rec] { rec->Observe(); });
   if (options_.checkpoint_path.empty() && !options_.output_path.empty())
     options_.checkpoint_path = options_.output_path + ".ckpt";
 }
 
 void Simulation::SaveCheckpoint(const std::string& path) const {
-  const std::string tmp = TempName(path);
-  model_->solver().SaveCheckpoint(tmp);
   std::string out(kMagic, sizeof kMagic);
   PutBlob(&out, model_->scene().effective_toml);
-  std::string solver_blob;
-  try {
-    solver_blob = ReadAll(tmp);
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
-  }
-  std::remove(tmp.c_str());
-  PutBlob(&out, solver_blob);
+  PutBlob(&out, model_->SaveState());
   PutBlob(&out, recorder_->SaveState());
   WriteFileAtomically(path, out);
 }
@@ -108,18 +95,10 @@ void Simulation::LoadCheckpoint(const std::string& path) {
   size_t pos = sizeof kMagic;
   if (GetBlob(s, &pos, path) != model_->scene().effective_toml)
     throw InputError(path + ": checkpoint was written for a different scene (or --set values)");
-  const std::string solver_blob = GetBlob(s, &pos, path);
+  const std::string model_blob = GetBlob(s, &pos, path);
   const std::string recorder_blob = GetBlob(s, &pos, path);
-  const std::string tmp = TempName(path);
-  WriteFileAtomically(tmp, solver_blob);
   try {
-    model_->solver().LoadCheckpoint(tmp);
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
-  }
-  std::remove(tmp.c_str());
-  try {
+    model_->LoadState(model_blob);
     recorder_->LoadState(recorder_blob);
   } catch (const InputError& e) {
     throw InputError(path + ": " + e.what());
@@ -128,7 +107,7 @@ void Simulation::LoadCheckpoint(const std::string& path) {
 
 SimulationSummary Simulation::Run() {
   const Scene& scene = model_->scene();
-  solver::ExplicitSolver& solver = model_->solver();
+  BearingModel& model = *model_;
   const double duration = scene.run.duration_s;
   const double ci = scene.solver.checkpoint_interval_s;
   SimulationSummary sum;
@@ -138,36 +117,36 @@ SimulationSummary Simulation::Run() {
   if (options_.resume) {
     LoadCheckpoint(options_.checkpoint_path);
     sum.resumed = true;
-    sum.resumed_from_s = solver.time();
+    sum.resumed_from_s = model.time();
   }
   const double progress_dt =
       options_.progress_interval_s > 0 ? options_.progress_interval_s : duration / 200.0;
   sum.min_time_step = std::numeric_limits<double>::infinity();
-  const long first_step = solver.step();
-  const double start_time = solver.time();
-  double next_ckpt = ci > 0 ? (std::floor(solver.time() / ci + 1e-12) + 1.0) * ci
+  const long first_step = model.step();
+  const double start_time = model.time();
+  double next_ckpt = ci > 0 ? (std::floor(model.time() / ci + 1e-12) + 1.0) * ci
                             : std::numeric_limits<double>::infinity();
   const auto t0 = std::chrono::steady_clock::now();
   bool stopped = false;
-  while (solver.time() < duration) {
-    const double next_progress = (std::floor(solver.time() / progress_dt) + 1.0) * progress_dt;
+  while (model.time() < duration) {
+    const double next_progress = (std::floor(model.time() / progress_dt) + 1.0) * progress_dt;
     const double target = std::min({duration, next_ckpt, next_progress, options_.stop_after_s});
-    const solver::SolverSummary s = solver.Run(target);
+    const solver::SolverSummary s = model.Run(target);
     if (s.steps > 0) {
       sum.min_time_step = std::min(sum.min_time_step, s.min_time_step);
       sum.max_time_step = std::max(sum.max_time_step, s.max_time_step);
     }
     sum.threads = s.threads;
     CheckEnergyBalance();
-    const bool stop_now = solver.time() >= options_.stop_after_s && solver.time() < duration;
-    if (solver.time() >= next_ckpt || stop_now) {
-      if (solver.time() < duration) SaveCheckpoint(options_.checkpoint_path);
-      while (next_ckpt <= solver.time()) next_ckpt += ci;
+    const bool stop_now = model.time() >= options_.stop_after_s && model.time() < duration;
+    if (model.time() >= next_ckpt || stop_now) {
+      if (model.time() < duration) SaveCheckpoint(options_.checkpoint_path);
+      while (next_ckpt <= model.time()) next_ckpt += ci;
     }
     if (options_.progress) {
       SimulationProgress p;
-      p.time = solver.time(), p.duration = duration, p.steps = solver.step();
-      p.time_step = solver.time_step();
+      p.time = model.time(), p.duration = duration, p.steps = model.step();
+      p.time_step = model.time_step();
       p.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       p.start_time = start_time;
       options_.progress(p);
@@ -178,18 +157,18 @@ SimulationSummary Simulation::Run() {
     }
   }
   sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  sum.time = solver.time();
-  sum.steps = solver.step();
-  sum.steps_this_run = solver.step() - first_step;
-  if (sum.steps_this_run == 0) sum.min_time_step = sum.max_time_step = solver.time_step();
-  sum.elements = model_->bearing_mesh().mesh.num_elements();
-  sum.nodes = model_->bearing_mesh().mesh.num_nodes();
-  if (sum.steps_this_run > 0)
+  sum.time = model.time();
+  sum.steps = model.step();
+  sum.steps_this_run = model.step() - first_step;
+  if (sum.steps_this_run == 0) sum.min_time_step = sum.max_time_step = model.time_step();
+  sum.elements = model_->num_elements();
+  sum.nodes = model_->num_nodes();
+  if (sum.steps_this_run > 0 && sum.elements > 0)
     sum.ns_per_element_cycle =
         1e9 * sum.wall_seconds / (static_cast<double>(sum.steps_this_run) * sum.elements);
-  sum.energies = solver.energies();
+  sum.energies = model.energies();
   sum.energy_balance_error = sum.energies.BalanceError();
-  sum.ledger = solver.ContributorLedgers();
+  sum.ledger = model.ContributorLedgers();
   sum.hourglass_to_internal =
       sum.energies.internal > 0 ? sum.energies.hourglass / sum.energies.internal : 0.0;
   if (const Recorder::Series* w = recorder_->Find("/cage/omega")) {
@@ -221,17 +200,17 @@ SimulationSummary Simulation::Run() {
 void Simulation::CheckEnergyBalance() const {
   const double limit = model_->scene().solver.max_energy_error_percent;
   if (limit <= 0.0) return;
-  const solver::Energies e = model_->solver().energies();
+  const solver::Energies e = model_->energies();
   const double error = 100.0 * e.BalanceError();
   if (e.Scale() < 1e-3 || error <= limit) return;
   std::ostringstream os;
   os.precision(3);
-  os << "simulate: energy balance error " << error << " % at t = " << 1e3 * model_->solver().time()
+  os << "simulate: energy balance error " << error << " % at t = " << 1e3 * model_->time()
      << " ms exceeds solver.max_energy_error_percent = " << limit
      << "; the results would not be trustworthy and were not written (spall simulate "
         "--energy-ledger names the contact pair or constraint that breaks the balance)";
   // With the work ledger: name the contributor whose books are furthest off.
-  const std::vector<solver::ContributorLedger> ledger = model_->solver().ContributorLedgers();
+  const std::vector<solver::ContributorLedger> ledger = model_->ContributorLedgers();
   const auto worst =
       std::max_element(ledger.begin(), ledger.end(), [](const auto& a, const auto& b) {
         return std::abs(a.Created()) < std::abs(b.Created());
@@ -250,6 +229,8 @@ void Simulation::WriteOutputs(const SimulationSummary& summary) const {
       f.SetAttribute("/", "scene", model_->scene().effective_toml);
       f.SetAttribute("/", "mesh_quality", model_->mesh_quality().Report());
       f.SetAttribute("/", "steps", static_cast<double>(summary.steps));
+      f.SetAttribute("/", "fidelity", std::string(FidelityName(model_->fidelity())));
+      f.SetAttribute("/", "fidelity_reason", fidelity_reason_);
       f.SetAttribute("/", "energy_balance_error", summary.energy_balance_error);
       recorder_->Write(&f);
       f.Close();
