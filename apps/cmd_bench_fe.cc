@@ -17,6 +17,22 @@ struct Opts {
   bool json = false;
 };
 
+// Upper bounds, so a typo cannot ask for 1e5 threads (thread creation fails) or a run of days.
+constexpr int kMaxThreads = 256;
+constexpr int kMaxElements = 5'000'000;
+constexpr int kMaxSteps = 100'000;
+
+void CheckLimits(const spallkit::sim::solver::EngineBenchmarkOptions& b) {
+  auto in = [](const char* option, int v, int lo, int hi) {
+    if (v < lo || v > hi)
+      throw spallkit::InputError(std::string(option) + " must be in [" + std::to_string(lo) + ", " +
+                                 std::to_string(hi) + "] (got " + std::to_string(v) + ")");
+  };
+  in("--threads", b.threads, 1, kMaxThreads);
+  in("--elements", b.elements, 500, kMaxElements);
+  in("--steps", b.steps, 1, kMaxSteps);
+}
+
 spallkit::apps::Register reg(
     "bench fe", "Time the explicit FE engine (ns per element-cycle)", [](CLI::App& sub) {
       auto opts = std::make_shared<Opts>();
@@ -26,6 +42,7 @@ spallkit::apps::Register reg(
       sub.add_option("--steps", opts->bench.steps, "Timed steps (default 200)");
       sub.add_flag("--json", opts->json, "Print JSON");
       return [opts] {
+        CheckLimits(opts->bench);
         std::string err;
         if (!opts->bench.IsValid(&err)) throw spallkit::InputError(err);
         const auto r = spallkit::sim::solver::RunEngineBenchmark(opts->bench);

@@ -36,6 +36,10 @@ int Run(const Opts& o) {
     throw InputError("--rpm must be > 0 (got " + std::to_string(o.rpm) + ")");
   if (o.fs_option && o.fs_option->count() > 0 && (!(o.fs > 0.0) || !std::isfinite(o.fs)))
     throw InputError("--fs must be > 0 Hz (got " + std::to_string(o.fs) + ")");
+  if (o.threads < 0 || o.threads > dsp::DiagnoseOptions::kMaxThreads)
+    throw InputError("--threads must be in 0.." +
+                     std::to_string(dsp::DiagnoseOptions::kMaxThreads) + " (got " +
+                     std::to_string(o.threads) + ")");
   const BearingGeometry g = o.bearing.Geometry();
 
   spallkit::RecordOptions ro;
@@ -92,8 +96,8 @@ spallkit::apps::Register reg(
           ->capture_default_str();
       sub.add_option("--threads",
                      o->threads,
-                     "threads for the band search and the kurtogram (0: automatic, up to 4; the "
-                     "result is the same for any count)")
+                     "threads for the band search and the kurtogram (0: automatic, up to 4; at "
+                     "most 64; the result is the same for any count)")
           ->capture_default_str();
       return [o] { return Run(*o); };
     });

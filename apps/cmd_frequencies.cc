@@ -25,6 +25,8 @@ int Run(const Opts& o) {
   using namespace spallkit;
   if (!(o.rpm > 0.0) || !std::isfinite(o.rpm))
     throw InputError("--rpm must be > 0 (got " + std::to_string(o.rpm) + ")");
+  if (o.harmonics < 1 || o.harmonics > 50)
+    throw InputError("--harmonics must be in [1, 50] (got " + std::to_string(o.harmonics) + ")");
   const BearingGeometry g = o.bearing.Geometry();
   const BearingFrequencies f = ComputeFrequencies(g, o.rpm / 60.0);
   dsp::FaultBandOptions fbo;

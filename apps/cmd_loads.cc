@@ -9,6 +9,7 @@
 // load_zone_half_angle_deg, epsilon, centrifugal_force_n, radial_stiffness_n_per_m,
 // force_residual_n, rollers[{index, angle_deg, approach_um, load_inner_n, load_outer_n,
 // deflection_inner_um, deflection_outer_um}].
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -17,6 +18,7 @@
 
 #include "apps/command.h"
 #include "core/bearing.h"
+#include "core/error.h"
 #include "sim/quasistatic/harris_jones.h"
 
 namespace {
@@ -33,9 +35,33 @@ struct Opts {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
+// Option ranges, each message naming the option (the library checks them again by its names).
+void CheckOptions(const Opts& o, const spallkit::BearingGeometry& bearing) {
+  using spallkit::InputError;
+  auto num = [](double v) { return std::to_string(v); };
+  if (!(o.load_n >= 0)) throw InputError("--load-n must be >= 0 N (got " + num(o.load_n) + ")");
+  if (!(o.rpm >= 0))
+    throw InputError("--rpm must be >= 0 (the speed of the inner ring; got " + num(o.rpm) + ")");
+  if (!(o.roller_length_mm > 0))
+    throw InputError("--roller-length-mm must be > 0 (got " + num(o.roller_length_mm) + ")");
+  if (!(o.clearance_mm >= 0))
+    throw InputError("--clearance-mm must be >= 0 (got " + num(o.clearance_mm) +
+                     "; preload is not modelled)");
+  if (!(std::abs(o.phase_deg) <= 360.0))
+    throw InputError("--phase-deg must be in [-360, 360] (got " + num(o.phase_deg) + ")");
+  const double d_mm = bearing.element_diameter_m * 1e3;
+  if (!(o.clearance_mm < d_mm))
+    throw InputError("--clearance-mm must be below the roller diameter, " + num(d_mm) +
+                     " mm (got " + num(o.clearance_mm) + ")");
+  if (!(o.roller_length_mm <= 10 * d_mm))
+    throw InputError("--roller-length-mm must be at most 10 roller diameters, " + num(10 * d_mm) +
+                     " mm (got " + num(o.roller_length_mm) + ")");
+}
+
 int Run(const Opts& o) {
   using namespace spallkit;
   const BearingGeometry bearing = CatalogBearing(o.bearing);
+  CheckOptions(o, bearing);
   sim::LoadDistributionOptions opt;
   opt.radial_load_n = o.load_n;
   opt.inner_ring_speed_rad_s = o.rpm * 2.0 * std::numbers::pi / 60.0;
@@ -88,7 +114,24 @@ int Run(const Opts& o) {
                   r.outer_load_n);
     }
   }
-  return s.IsSolutionUsable() ? 0 : 2;
+  // Past the static capacity the elastic line-contact law is extrapolated: say so.
+  const double p0 = sim::HertzLinePressure(s.q_max_n,
+                                           opt.roller_length_m,
+                                           0.5 * bearing.element_diameter_m,
+                                           0.5 * bearing.inner_raceway_diameter_m);
+  if (s.IsSolutionUsable() && p0 > sim::kStaticCapacityStressPa)
+    std::fprintf(stderr,
+                 "spall: warning: Q_max %.4g N gives a Hertz contact stress of %.3g GPa, above the "
+                 "%.0f GPa of the static load rating (ISO 76): plastic deformation, the elastic "
+                 "contact law is extrapolated\n",
+                 s.q_max_n,
+                 p0 / 1e9,
+                 sim::kStaticCapacityStressPa / 1e9);
+  if (!s.IsSolutionUsable()) {
+    std::fprintf(stderr, "spall: loads: %s\n", s.message.c_str());
+    return 1;
+  }
+  return 0;
 }
 
 spallkit::apps::Register reg(

@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "apps/output_paths.h"
+#include "core/error.h"
 #include "sim/bearing/scene.h"
 #include "sim/bearing/simulation.h"
 
@@ -28,19 +30,40 @@ struct Opts {
   std::string csv;
   std::vector<std::string> sets;
   bool resume = false;
-  double stop_after_ms = -1.0;
+  double stop_after_ms = 0.0;
+  bool stop_after_ms_given = false;
   bool quiet = false;
   bool energy_ledger = false;
 };
 
+// Everything that can be checked before the run is: a bad path or a missing output fails in a
+// second, not after the simulation.
+void CheckBeforeRun(const Opts& o, const spallkit::sim::Scene& scene) {
+  using spallkit::InputError;
+  spallkit::apps::OutputPaths paths;
+  paths.Add("-o", o.output, /*required=*/true);
+  paths.Add("--csv", o.csv);
+  paths.MustDifferFrom("scene file", o.scene);
+  paths.Check();
+  const auto& outs = scene.outputs;
+  if (!o.csv.empty() &&
+      (std::find(outs.begin(), outs.end(), "acceleration") == outs.end() || scene.sensors.empty()))
+    throw InputError("--csv " + o.csv +
+                     ": the scene records no accelerations (add \"acceleration\" "
+                     "to run.outputs and at least one [[sensors]])");
+  if (o.stop_after_ms_given && !(o.stop_after_ms > 0))
+    throw InputError("--stop-after-ms must be > 0 (got " + std::to_string(o.stop_after_ms) + ")");
+}
+
 int Run(const Opts& o) {
   using namespace spallkit;
   const sim::Scene scene = sim::LoadScene(o.scene, o.sets);
+  CheckBeforeRun(o, scene);
   sim::SimulationOptions so;
   so.output_path = o.output;
   so.csv_path = o.csv;
   so.resume = o.resume;
-  if (o.stop_after_ms >= 0) so.stop_after_s = o.stop_after_ms * 1e-3;
+  if (o.stop_after_ms_given) so.stop_after_s = o.stop_after_ms * 1e-3;
   so.model.track_contributor_work = o.energy_ledger;
   const bool tty = ::isatty(STDERR_FILENO) && !o.quiet;
   if (!o.quiet)
@@ -102,7 +125,8 @@ spallkit::apps::Register reg(
       sub.add_flag("--resume", o->resume, "Continue from OUTPUT.ckpt");
       sub.add_option("--stop-after-ms",
                      o->stop_after_ms,
-                     "Stop at this simulated time after writing OUTPUT.ckpt (split long runs)");
+                     "Stop at this simulated time after writing OUTPUT.ckpt (split long runs)")
+          ->each([o](const std::string&) { o->stop_after_ms_given = true; });
       sub.add_flag("--quiet", o->quiet, "No model description or progress");
       sub.add_flag("--energy-ledger",
                    o->energy_ledger,

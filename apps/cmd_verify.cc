@@ -6,6 +6,7 @@
 #include <string>
 
 #include "apps/command.h"
+#include "core/error.h"
 #include "sim/verify/verification.h"
 
 namespace {
@@ -22,6 +23,9 @@ spallkit::apps::Register reg(
       sub.add_option("--filter", opts->filter, "Only cases whose name contains this string");
       return [opts] {
         const auto results = spallkit::sim::verify::RunVerification(opts->filter);
+        if (results.empty())
+          throw spallkit::InputError("--filter '" + opts->filter +
+                                     "' matches no verification case ('spall verify' runs all)");
         bool all = true;
         for (const auto& r : results) all = all && r.pass;
         if (opts->json) {

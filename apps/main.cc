@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <map>
 
+#include "apps/cli_guard.h"
 #include "apps/command.h"
 #include "core/error.h"
 
@@ -49,12 +50,18 @@ int main(int argc, char** argv) {
     }
   }
 
+  GuardOptions(app);
+  if (const auto unknown = UnknownSubcommand(app, argc, argv)) {
+    std::fprintf(stderr, "%s\n", unknown->c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // Usage errors: CLI11 prints help or the message; keep exit code 2 for errors, 0 for --help.
-    int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
+    // --help and --version print and exit 0; usage errors are one line and exit code 2.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::fprintf(stderr, "%s\n", ParseErrorLine(app, e).c_str());
+    return 2;
   }
 
   try {
@@ -63,14 +70,20 @@ int main(int argc, char** argv) {
       if (sub->parsed()) return run();
     }
   } catch (const spallkit::InputError& e) {
-    std::fprintf(stderr, "spall: error: %s\n", e.what());
+    std::fprintf(stderr, "spall: error: %s\n", OneLine(e.what()).c_str());
     return 2;
   } catch (const spallkit::NumericalError& e) {
-    std::fprintf(stderr, "spall: numerical error: %s\n", e.what());
-    return 2;
+    // A run that went wrong, not the input's form: exit code 1 (docs/RELIABILITY.md).
+    std::fprintf(stderr, "spall: numerical error: %s\n", OneLine(e.what()).c_str());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "spall: error: out of memory (the input asks for more memory than this machine "
+                 "has; reduce the run's size)\n");
+    return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "spall: error: %s\n", e.what());
-    return 2;
+    std::fprintf(stderr, "spall: error: %s\n", OneLine(e.what()).c_str());
+    return 1;
   }
   return 2;
 }

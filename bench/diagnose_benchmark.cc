@@ -12,6 +12,7 @@
 namespace {
 
 using namespace spallkit::dsp;
+using spallkit::Record;
 
 Record MakeRecord(bool faulty) {
   spallkit::testing::FaultSignalSpec s;
@@ -53,7 +54,7 @@ void RunDiagnose(benchmark::State& state, const Record& record) {
   int bands = 0, searched = 0;
   for (auto _ : state) {
     const auto d = Diagnose(record, bearing, kShaftHz, options);
-    verdict = d.verdict;
+    verdict = VerdictName(d.verdict);
     bands = d.candidate_bands;
     searched = d.searched_bands;
     benchmark::DoNotOptimize(d.faults.data());

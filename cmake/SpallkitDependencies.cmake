@@ -29,3 +29,10 @@ foreach(module core imgproc imgcodecs)
   find_library(OPENCV_${module}_LIBRARY opencv_${module} REQUIRED)
   target_link_libraries(spallkit_opencv INTERFACE ${OPENCV_${module}_LIBRARY})
 endforeach()
+
+# MPI (optional, Open MPI from Debian): `spall dataset run` under `mpirun -n P` spreads a sweep's
+# cases over the ranks. Without it the build still works and runs sweeps on local workers.
+option(SPALLKIT_WITH_MPI "Use MPI for spall dataset when it is found" ON)
+if(SPALLKIT_WITH_MPI)
+  find_package(MPI COMPONENTS C QUIET)
+endif()

@@ -33,9 +33,10 @@ std::string Upper(std::string s) {
 
 void BearingGeometry::Validate() const {
   if (num_elements < 3) throw InputError("bearing: number of rolling elements must be >= 3");
-  if (!(element_diameter_m > 0)) throw InputError("bearing: element diameter must be > 0");
-  if (!(pitch_diameter_m > element_diameter_m))
-    throw InputError("bearing: pitch diameter must exceed the element diameter");
+  if (!(element_diameter_m > 0) || !std::isfinite(element_diameter_m))
+    throw InputError("bearing: element diameter must be a finite number > 0");
+  if (!(pitch_diameter_m > element_diameter_m) || !std::isfinite(pitch_diameter_m))
+    throw InputError("bearing: pitch diameter must be finite and exceed the element diameter");
   if (!(std::abs(contact_angle_rad) < std::numbers::pi / 2))
     throw InputError("bearing: contact angle must be in (-90, 90) degrees");
   if (num_elements * element_diameter_m >= std::numbers::pi * pitch_diameter_m)

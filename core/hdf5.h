@@ -10,7 +10,7 @@
 //  - writes string attributes as variable-length UTF-8, which h5py reads as `str` (fixed-length
 //    strings come back as `bytes`); it reads both kinds.
 //
-// Layout written by `spall simulate` (see DESIGN.md, "Public formats"):
+// Layout written by `spall simulate` (docs/BEARING_MODEL.md, "Output file"):
 //   /                 attributes spallkit_version, scene (strings)
 //   /time             float64 [n]
 //   /signals/accel_y  float64 [n], attributes sample_rate_hz (double), units (string)

@@ -201,8 +201,9 @@ std::optional<double> TimeColumnScale(std::string_view header) {
 
 // Units of a signal column from its header (see record.h).
 std::string UnitsFromHeader(std::string_view header) {
-  const auto [base, unit] = SplitNameAndUnit(header);
+  const auto [name, unit] = SplitNameAndUnit(header);
   if (!unit.empty()) return unit;
+  const auto base = name;  // a lambda may not capture a structured binding before C++20 in clang 14
   auto ends_with = [&](const std::string& s) {
     return base.size() > s.size() && base.compare(base.size() - s.size(), s.size(), s) == 0;
   };

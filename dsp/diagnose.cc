@@ -15,9 +15,44 @@
 #include "core/error.h"
 #include "dsp/explain.h"
 #include "dsp/prewhiten.h"
+#include "dsp/record_check.h"
 #include "dsp/statistics.h"
 
 namespace spallkit::dsp {
+
+const char* VerdictName(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kHealthy:
+      return "healthy";
+    case Verdict::kOuterRace:
+      return "outer_race";
+    case Verdict::kInnerRace:
+      return "inner_race";
+    case Verdict::kRollingElement:
+      return "rolling_element";
+    case Verdict::kCage:
+      return "cage";
+  }
+  return "?";
+}
+
+Verdict VerdictOf(FaultComponent component) {
+  switch (component) {
+    case FaultComponent::kOuterRace:
+      return Verdict::kOuterRace;
+    case FaultComponent::kInnerRace:
+      return Verdict::kInnerRace;
+    case FaultComponent::kRollingElement:
+      return Verdict::kRollingElement;
+    case FaultComponent::kCage:
+      return Verdict::kCage;
+  }
+  return Verdict::kHealthy;
+}
+
+const char* BandSelectionName(BandSelection selection) {
+  return selection == BandSelection::kFaultEvidence ? "fault_evidence" : "kurtogram";
+}
 
 bool DiagnoseOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) {
@@ -32,7 +67,8 @@ bool DiagnoseOptions::IsValid(std::string* error) const {
     return fail("false-alarm probability must be in (0, 1)");
   if (kurtogram_max_level < 0) return fail("kurtogram level must be >= 0");
   if (first_bands < 0) return fail("first bands must be >= 0 (0 = all candidates at once)");
-  if (threads < 0) return fail("threads must be >= 0 (0 = automatic)");
+  if (threads < 0 || threads > kMaxThreads)
+    return fail("threads must be in 0.." + std::to_string(kMaxThreads) + " (0 = automatic)");
   if (floor_window_bins < 21) return fail("floor window must be >= 21 bins");
   if (!(line_p_value > 0.0 && line_p_value < 1.0)) return fail("line p-value must be in (0, 1)");
   if (!(min_modulation >= 0.0 && min_modulation < 10.0))
@@ -227,12 +263,22 @@ Diagnosis Diagnose(const Record& record,
                      std::to_string(static_cast<long>(std::ceil(min_duration * fs))) +
                      " samples) to resolve the cage rate and the noise floor");
 
+  // Refuses non-finite and constant records; spikes and clipping become warnings.
+  d.warnings = CheckRecord(record.samples).warnings;
   d.statistics = ComputeTimeStatistics(record.samples);
 
-  std::vector<double> whitened;
+  // The analysis is scale-free (every line is tested against its own floor); values far from 1
+  // are rescaled so that squares and spectra neither overflow nor underflow.
+  std::vector<double> rescaled, whitened;
   std::span<const double> x(record.samples);
+  if (d.statistics.peak > 1e30 || d.statistics.peak < 1e-30) {
+    rescaled.resize(record.samples.size());
+    for (size_t i = 0; i < rescaled.size(); ++i)
+      rescaled[i] = record.samples[i] / d.statistics.peak;
+    x = rescaled;
+  }
   if (options.prewhiten) {
-    whitened = CepstrumPrewhiten(record.samples);
+    whitened = CepstrumPrewhiten(x);
     x = whitened;
   }
   EnvelopeAnalyzer analyzer(x, fs);
@@ -294,7 +340,9 @@ Diagnosis Diagnose(const Record& record,
   std::optional<double> shaft_measured;
   if (options.speed_search > 0.0) {
     if (options.prewhiten) {
-      EnvelopeAnalyzer raw(record.samples, fs);
+      EnvelopeAnalyzer raw(rescaled.empty() ? std::span<const double>(record.samples)
+                                            : std::span<const double>(rescaled),
+                           fs);
       shaft_measured = EstimateShaftSpeed(raw, shaft_hz, options.speed_search);
     } else {
       shaft_measured = EstimateShaftSpeed(analyzer, shaft_hz, options.speed_search);
@@ -463,10 +511,10 @@ Diagnosis Diagnose(const Record& record,
     any_significant |= det.p_value <= options.false_alarm_probability;
   if (any_significant) {
     chosen = std::move(*best);
-    d.band_selection = "fault_evidence";
+    d.band_selection = BandSelection::kFaultEvidence;
   } else {
     chosen = std::move(*kurt_choice);
-    d.band_selection = "kurtogram";
+    d.band_selection = BandSelection::kKurtogram;
   }
   d.band = chosen.node.band();
   d.band_kurtosis = chosen.node.kurtosis;
@@ -514,7 +562,7 @@ Diagnosis Diagnose(const Record& record,
   }
   if (d.measured_f_b_hz) d.f_b_slip_percent = (*d.measured_f_b_hz / kin.f_b_hz - 1.0) * 100.0;
   if (d.measured_f_c_hz) d.f_c_slip_percent = (*d.measured_f_c_hz / kin.cage_hz - 1.0) * 100.0;
-  d.verdict = d.faults.front().detected ? ComponentName(d.faults.front().component) : "healthy";
+  d.verdict = d.faults.front().detected ? VerdictOf(d.faults.front().component) : Verdict::kHealthy;
   return d;
 }
 
@@ -540,7 +588,7 @@ double Finite(double v) { return std::isfinite(v) ? v : -1.0; }
 std::string Diagnosis::ToJson(int indent) const {
   using nlohmann::ordered_json;
   ordered_json j;
-  j["verdict"] = verdict;
+  j["verdict"] = VerdictName(verdict);
   ordered_json faults_json = ordered_json::array();
   for (const auto& f : faults) {
     ordered_json fj;
@@ -578,13 +626,15 @@ std::string Diagnosis::ToJson(int indent) const {
     faults_json.push_back(fj);
   }
   j["faults"] = faults_json;
+  j["confident"] = warnings.empty();
+  j["warnings"] = warnings;
   j["band"] = {{"low_hz", band.low_hz},
                {"high_hz", band.high_hz},
                {"center_hz", band.center_hz()},
                {"bandwidth_hz", band.width_hz()},
                {"kurtogram_level", band_level},
                {"kurtosis", band_kurtosis},
-               {"selection", band_selection},
+               {"selection", BandSelectionName(band_selection)},
                {"candidates", candidate_bands},
                {"searched", searched_bands}};
   j["kurtogram"] = {{"best_center_hz", kurtogram_best.center_hz},
@@ -681,16 +731,17 @@ std::string Diagnosis::BriefReport() const {
                 band.width_hz(),
                 band_level,
                 band_kurtosis,
-                band_selection == "kurtogram" ? "kurtogram" : "fault evidence",
+                band_selection == BandSelection::kKurtogram ? "kurtogram" : "fault evidence",
                 candidate_bands,
                 searched_bands);
   out += buf;
   std::snprintf(buf,
                 sizeof buf,
                 "VERDICT: %s   (false-alarm probability %.2g per record)\n",
-                verdict.c_str(),
+                VerdictName(verdict),
                 options.false_alarm_probability);
   out += buf;
+  for (const auto& w : warnings) out += "WARNING (verdict not confident): " + w + "\n";
   out +=
       "  rank component        detected  p-value    score/threshold  harm.  sideb.  fundamental\n";
   int rank = 1;

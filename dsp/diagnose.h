@@ -27,14 +27,28 @@
 #include <vector>
 
 #include "core/bearing.h"
+#include "core/record.h"
 #include "dsp/detection.h"
 #include "dsp/envelope.h"
 #include "dsp/fault_bands.h"
 #include "dsp/kurtogram.h"
-#include "core/record.h"
 #include "dsp/statistics.h"
 
 namespace spallkit::dsp {
+
+// The conclusion of a diagnosis. Strings ("healthy", "outer_race", "inner_race",
+// "rolling_element", "cage") only at the JSON/CLI boundary: VerdictName / ParseVerdict.
+enum class Verdict { kHealthy, kOuterRace, kInnerRace, kRollingElement, kCage };
+inline constexpr int kVerdicts = 5;
+const char* VerdictName(Verdict verdict);
+// The verdict that names a fault component.
+Verdict VerdictOf(FaultComponent component);
+
+// How the reported demodulation band was chosen: the band with the strongest family evidence, or
+// (no family significant anywhere) the kurtogram's choice among the candidates. JSON strings
+// "fault_evidence" / "kurtogram".
+enum class BandSelection { kFaultEvidence, kKurtogram };
+const char* BandSelectionName(BandSelection selection);
 
 struct DiagnoseOptions {
   int harmonics = 5;                      // harmonics 1..N of each family
@@ -61,20 +75,24 @@ struct DiagnoseOptions {
   // the bands are compared in the same fixed order as with one thread, so the Diagnosis is
   // bit-identical for every thread count; only the wall time changes.
   int threads = 0;
+  static constexpr int kMaxThreads = 64;
 
   bool IsValid(std::string* error) const;
 };
 
 // Everything the diagnosis found, in SI units (Hz). BriefReport() and ToJson() render it.
 struct Diagnosis {
-  std::string verdict;  // "healthy", "outer_race", "inner_race", "rolling_element", "cage"
+  Verdict verdict = Verdict::kHealthy;  // the first detected family, else healthy
   std::vector<FamilyDetection> faults;  // all four families, most significant first
-  std::vector<FaultFamily> families;    // kinematic lines searched (same order as kFaultComponents)
+  // Why the verdict should not be trusted (clipping, spikes: dsp/record_check.h); empty when the
+  // record looks sound. Records that cannot be analysed at all are refused (InputError).
+  std::vector<std::string> warnings;
+  std::vector<FaultFamily> families;  // kinematic lines searched (same order as kFaultComponents)
 
   Band band;                   // demodulation band used for the reported SES
   double band_kurtosis = 0.0;  // spectral kurtosis of that node
   double band_level = 0.0;     // kurtogram level of that node
-  std::string band_selection;  // "fault_evidence" or "kurtogram"
+  BandSelection band_selection = BandSelection::kKurtogram;
   KurtogramNode kurtogram_best;
   int candidate_bands = 0;    // nodes that met the width/position rule (the Bonferroni count)
   int searched_bands = 0;     // of those, searched before a detection stopped the search
@@ -113,7 +131,8 @@ struct Diagnosis {
 };
 
 // Throws InputError for a non-positive shaft speed or sample rate, fault frequencies above
-// Nyquist, a record too short for the analysis, or invalid options.
+// Nyquist, a record too short for the analysis, a constant record or a non-finite sample
+// (dsp/record_check.h), or invalid options. Spikes and clipping give Diagnosis::warnings.
 Diagnosis Diagnose(const Record& record,
                    const BearingGeometry& bearing,
                    double shaft_hz,

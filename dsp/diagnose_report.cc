@@ -51,7 +51,7 @@ std::string SesPlot(const Diagnosis& d, const std::string& dir) {
                 d.band.low_hz,
                 d.band.high_hz,
                 d.band_kurtosis,
-                d.verdict.c_str());
+                VerdictName(d.verdict));
   p.title = title;
   p.x_label = "cyclic frequency alpha (Hz)";
   p.y_label =

@@ -64,8 +64,8 @@ FamilyRates MeasureRates(const FamilyDetection& detection,
 
 // The rate at which a detected roller spall goes round, f_c, for the report. The spall is
 // load-zone modulated once per cage turn, so its SES carries f_c twice: as the spacing of the
-// +/- m f_c sidebands around k f_b and as the modulation lines m f_c themselves (dsp-notes: "f_c
-// from the FTF line or the sideband spacing"). Least squares over both, each estimate weighted
+// +/- m f_c sidebands around k f_b and as the modulation lines m f_c themselves (f_c from the
+// FTF line or from the sideband spacing). Least squares over both, each estimate weighted
 // by the inverse of its error in units of one peak's error: a sideband pair's half-distance
 // (hi - lo) / 2 with weight 2, a modulation line f_m / m with weight m^2. Single sidebands
 // against the measured k f_b (error of two peaks and of k f_b) only when neither is present.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <sstream>
+#include <vector>
 
 #include "core/error.h"
 
@@ -46,6 +47,17 @@ TimeStatistics ComputeTimeStatistics(std::span<const double> x) {
         throw InputError(os.str());
       }
     }
+  }
+  // Powers up to the 4th overflow (or underflow) for |x| beyond ~1e75: compute the moments of x /
+  // peak (scale-free except mean, rms, peak) so that a 1e100 spike still gives finite numbers.
+  if (peak > 1e60 || (peak > 0.0 && peak < 1e-60)) {
+    std::vector<double> scaled(x.begin(), x.end());
+    for (double& v : scaled) v /= peak;
+    TimeStatistics t = ComputeTimeStatistics(scaled);
+    t.mean *= peak;
+    t.rms *= peak;
+    t.peak = peak;
+    return t;
   }
   TimeStatistics s;
   s.count = static_cast<int>(n);

@@ -76,9 +76,10 @@ Identification Identify(const Record& record,
   const std::string depth_reason =
       "depth: not identifiable (the response does not depend on it: docs/IDENTIFY.md)";
 
-  const std::string& verdict = diagnosis.verdict;
-  if (verdict != "rolling_element") {
-    if (verdict == "outer_race" || verdict == "inner_race")
+  const std::string verdict = dsp::VerdictName(diagnosis.verdict);
+  if (diagnosis.verdict != dsp::Verdict::kRollingElement) {
+    if (diagnosis.verdict == dsp::Verdict::kOuterRace ||
+        diagnosis.verdict == dsp::Verdict::kInnerRace)
       id.reasons.push_back("race fault (" + verdict +
                            "): its impacts carry no roller count and no roller spall width");
     else
@@ -270,8 +271,9 @@ Identification Identify(const Record& record,
 
 std::string Identification::BriefReport() const {
   std::ostringstream os;
-  os << "diagnosis: " << diagnosis.verdict << " (band " << Fmt("%.0f", diagnosis.band.low_hz) << "-"
-     << Fmt("%.0f", diagnosis.band.high_hz) << " Hz)\n";
+  os << "diagnosis: " << dsp::VerdictName(diagnosis.verdict) << " (band "
+     << Fmt("%.0f", diagnosis.band.low_hz) << "-" << Fmt("%.0f", diagnosis.band.high_hz)
+     << " Hz)\n";
   if (roller_signature)
     os << "rates: f_c " << Fmt("%.4f", cage_hz) << " Hz, f_b " << Fmt("%.3f", 2.0 * spin_hz)
        << " Hz (refined), " << Fmt("%.1f", cage_revolutions) << " cage revolutions\n";

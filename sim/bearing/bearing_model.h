@@ -118,7 +118,10 @@ class BearingModel {
   double InnerRingSpeed(double t) const { return speed_(t); }
   double TheoreticalCageSpeed(double t) const;
 
-  // Element and node counts of the meshed parts (0 for a model without a mesh).
+  // The meshed parts (FE: every part; hybrid: the housing; lumped: the housing its fit was made
+  // on, not stepped) and the geometry they carry: raceway, pitch and roller radii, roller angles.
+  virtual const BearingMesh& bearing_mesh() const = 0;
+  // Element and node counts of the stepped mesh (0 for a model without one).
   virtual int num_elements() const = 0;
   virtual int num_nodes() const = 0;
   const MeshQualityReport& mesh_quality() const { return mesh_quality_; }

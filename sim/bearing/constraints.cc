@@ -2,29 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
+#include "core/checkpoint_io.h"
 #include "core/error.h"
 
 namespace spallkit::sim {
-namespace {
-
-std::string PackDouble(double v) {
-  std::string s(sizeof v, '\0');
-  std::memcpy(s.data(), &v, sizeof v);
-  return s;
-}
-
-double UnpackDouble(const std::string& bytes, const std::string& who) {
-  double v = 0.0;
-  if (bytes.size() != sizeof v) throw InputError("checkpoint: bad state size for '" + who + "'");
-  std::memcpy(&v, bytes.data(), sizeof v);
-  return v;
-}
-
-}  // namespace
-
 RigidPart::RigidPart(std::string name, std::vector<int> nodes)
     : name_(std::move(name)), nodes_(std::move(nodes)) {
   if (nodes_.size() < 2) throw InputError("rigid part '" + name_ + "': needs at least 2 nodes");
@@ -96,20 +79,22 @@ void RigidPart::AddForces(fe::NodalState& s, double /*t*/, double dt) {
 }
 
 std::string RigidPart::SaveState() const {
-  std::string out = PackDouble(work_);
-  for (size_t k = 0; k < ref_x_.size(); ++k) out += PackDouble(ref_x_[k]) + PackDouble(ref_y_[k]);
-  return out;
+  CheckpointWriter out;
+  out.Put(work_);
+  for (size_t k = 0; k < ref_x_.size(); ++k) out.Put(ref_x_[k]), out.Put(ref_y_[k]);
+  return out.Take();
 }
 
 void RigidPart::LoadState(const std::string& bytes) {
   const size_t n = bytes.size() / sizeof(double);
   if (bytes.size() % sizeof(double) != 0 || (n != 1 && n != 1 + 2 * nodes_.size()))
     throw InputError("checkpoint: bad state size for '" + name_ + "'");
-  work_ = UnpackDouble(bytes.substr(0, sizeof(double)), name_);
+  CheckpointReader in(bytes, "checkpoint: state of '" + name_ + "'");
+  work_ = in.Get<double>();
   ref_x_.clear(), ref_y_.clear();
-  for (size_t k = 1; k < n; k += 2) {
-    ref_x_.push_back(UnpackDouble(bytes.substr(k * sizeof(double), sizeof(double)), name_));
-    ref_y_.push_back(UnpackDouble(bytes.substr((k + 1) * sizeof(double), sizeof(double)), name_));
+  while (!in.AtEnd()) {
+    ref_x_.push_back(in.Get<double>());
+    ref_y_.push_back(in.Get<double>());
   }
 }
 
@@ -237,7 +222,16 @@ void TiedNodes::AddForces(fe::NodalState& s, double /*t*/, double /*dt*/) {
   }
 }
 
-std::string TiedNodes::SaveState() const { return PackDouble(dissipated_); }
-void TiedNodes::LoadState(const std::string& bytes) { dissipated_ = UnpackDouble(bytes, name_); }
+std::string TiedNodes::SaveState() const {
+  CheckpointWriter out;
+  out.Put(dissipated_);
+  return out.Take();
+}
+
+void TiedNodes::LoadState(const std::string& bytes) {
+  if (bytes.size() != sizeof(double))
+    throw InputError("checkpoint: bad state size for '" + name_ + "'");
+  dissipated_ = CheckpointReader(bytes, "checkpoint: state of '" + name_ + "'").Get<double>();
+}
 
 }  // namespace spallkit::sim

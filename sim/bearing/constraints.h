@@ -5,13 +5,13 @@
 //  - RigidPart: a node set that moves as ONE rigid body with free translation AND free rotation
 //    (the solver's RigidBody prescribes the rotation). Used for the cage: in the 2-D section the
 //    through-pockets cut the cage into Z webs whose joining side rims lie outside the plane, so
-//    the webs are made one rigid body (bearing-notes, docs/BEARING_MODEL.md). Each step it takes
+//    the webs are made one rigid body (docs/BEARING_MODEL.md). Each step it takes
 //    the resultant F and torque T (about the mass centre c) of the forces on the set, and
 //    replaces the force on node i by m_i (F / M + alpha e_z x r_i - omega^2 r_i), alpha = T / J,
 //    r_i = x_i - c: the exact rigid acceleration (translation, angular acceleration,
 //    centripetal). Resultant and torque are unchanged, so the constraint does no work on a rigid
 //    velocity field; the work it does do (rounding, the centripetal term's O(dt^2) error) is
-//    reported as ExternalWork() so the energy balance shows it. Before that, positions and
+//    reported as ExternalWork() so the energy balance shows it. First, positions and
 //    velocities are projected onto the best-fit rigid motion of the reference shape (no drift
 //    over thousands of revolutions; momentum and angular momentum unchanged).
 //

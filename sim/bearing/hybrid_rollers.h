@@ -1,4 +1,4 @@
-// The hybrid bearing model's force contributor (DESIGN.md "Fidelity ladder", level 3): the rigid
+// The hybrid bearing model's force contributor (docs/BEARING_MODEL.md): the rigid
 // rollers, cage and inner ring of roller_contacts.h against the FE outer ring's raceway nodes
 // (raceway_kernel.h). The outer ring and the adapter (the transfer path to the sensor) stay
 // flexible FE; sim/bearing/model_builder.h builds both halves when the scene says

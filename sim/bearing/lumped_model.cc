@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
+#include <cstdint>
 #include <map>
 #include <mutex>
 #include <sstream>
 
+#include "core/checkpoint_io.h"
 #include "core/constants.h"
 #include "core/error.h"
 #include "sim/bearing/model_builder.h"
@@ -324,31 +325,38 @@ double LumpedBearingModel::SensorVelocity(int channel) const {
 }
 
 std::string LumpedBearingModel::SaveState() const {
-  const double v[] = {time_,
-                      dt_,
-                      dt_prev_,
-                      static_cast<double>(step_),
-                      spring_energy_,
-                      housing_damping_work_,
-                      started_ ? 1.0 : 0.0,
-                      race_.x_,
-                      race_.y_,
-                      race_.vx_,
-                      race_.vy_};
-  std::string out(reinterpret_cast<const char*>(v), sizeof v);
-  return out + rollers_.SaveState();
+  CheckpointWriter out;
+  for (double x : {time_,
+                   dt_,
+                   dt_prev_,
+                   spring_energy_,
+                   housing_damping_work_,
+                   race_.x_,
+                   race_.y_,
+                   race_.vx_,
+                   race_.vy_})
+    out.Put(x);
+  out.Put<std::int64_t>(step_);
+  out.Put<std::uint8_t>(started_ ? 1 : 0);
+  out.PutBytes(rollers_.SaveState());
+  return out.Take();
 }
 
 void LumpedBearingModel::LoadState(const std::string& bytes) {
-  constexpr size_t kOwn = 11;
-  if (bytes.size() < kOwn * sizeof(double))
-    throw InputError("lumped model: checkpoint state has the wrong size");
-  double v[kOwn];
-  std::memcpy(v, bytes.data(), sizeof v);
-  rollers_.LoadState(bytes.substr(sizeof v));
-  time_ = v[0], dt_ = v[1], dt_prev_ = v[2], step_ = static_cast<long>(v[3]);
-  spring_energy_ = v[4], housing_damping_work_ = v[5], started_ = v[6] != 0.0;
-  race_.x_ = v[7], race_.y_ = v[8], race_.vx_ = v[9], race_.vy_ = v[10];
+  CheckpointReader in(bytes, "lumped model state");
+  for (double* x : {&time_,
+                    &dt_,
+                    &dt_prev_,
+                    &spring_energy_,
+                    &housing_damping_work_,
+                    &race_.x_,
+                    &race_.y_,
+                    &race_.vx_,
+                    &race_.vy_})
+    *x = in.Get<double>();
+  step_ = static_cast<long>(in.Get<std::int64_t>());
+  started_ = in.Get<std::uint8_t>() != 0;
+  rollers_.LoadState(in.GetBytes());
 }
 
 std::string LumpedBearingModel::Describe() const {

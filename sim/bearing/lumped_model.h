@@ -80,6 +80,7 @@ class LumpedBearingModel : public BearingModel {
   BodyMotion CageMotion() const override;
   BodyMotion InnerRingMotion() const override;
   double SensorVelocity(int channel) const override;
+  const BearingMesh& bearing_mesh() const override { return housing_; }
   int num_elements() const override { return 0; }
   int num_nodes() const override { return 0; }
   std::string Describe() const override;
@@ -94,7 +95,7 @@ class LumpedBearingModel : public BearingModel {
  private:
   void Step();
 
-  BearingMesh housing_;  // geometry only (raceway, pitch and roller radii, roller angles)
+  BearingMesh housing_;  // the fit's housing mesh: geometry only, not stepped
   HousingFit fit_;
   RollerContacts rollers_;
   RigidOuterRace race_;

@@ -67,9 +67,9 @@ void Rename(fe::Mesh* m, const std::string& from, const std::string& to) {
 
 // O-grid layout of a roller of radius r with 4n rim nodes (rim spacing s = 2 pi r / 4n, the
 // contact size). The explicit step is set by the model's smallest element L_e = A / longest
-// diagonal, and the old layout (straight-sided core of half-width 0.4 r, layers of at most
-// 1.5 s) had core cells of 0.5 s and 45/135 deg elements at the core corners: at 0.25 mm its
-// step was 11.5 ns against 26-30 ns for the rings' raceway elements. Now:
+// diagonal; a straight-sided core of half-width 0.4 r (layers of at most 1.5 s) has core cells
+// of 0.5 s and 45/135 deg elements at the core corners (11.5 ns at 0.25 mm against 26-30 ns for
+// the rings' raceway elements). So:
 //  - the core is n x n quads inside a "rounded square" whose corners sit at kCoreCorner r
 //    (half-width a = 0.59 r, core cells about 0.75 s); its four sides are circular arcs through
 //    the corners, leaving them at kCoreBulge to the chord, so the three elements at a core corner
@@ -80,7 +80,7 @@ void Rename(fe::Mesh* m, const std::string& from, const std::string& to) {
 // At 0.25 mm the roller's step becomes 15.9 ns (the corner elements: a quad with 120 deg
 // angles has L_e = side / 2). A roller whose spall is too deep for these layers (bottom less
 // than half a layer above the core, or an angle below kMinNotchAngleDeg next to the walls) falls
-// back to the old layout, with its smaller step.
+// back to the straight-sided core, with its smaller step.
 struct RollerGrid {
   int n = 0, m = 0;
   double a = 0.0, bulge = 0.0;  // core half-width at the corners, side tangent angle (rad)
@@ -90,7 +90,7 @@ constexpr double kCoreCorner = 0.83;               // core corners at this fract
 constexpr double kCoreBulge = 15.0 * kPi / 180.0;  // side arcs' angle to the chord at a corner
 constexpr double kMinNotchAngleDeg = 25.0;  // smallest interior angle next to a spall's walls
 
-// `legacy`: the old layout (straight-sided core of half-width 0.4 r), used only for a roller
+// `legacy`: the straight-sided core of half-width 0.4 r, used only for a roller
 // whose spall is too deep for the layers of the default one (MakeRoller retries with it).
 RollerGrid MakeRollerGrid(double r, double contact_size, bool legacy) {
   RollerGrid g;
@@ -223,7 +223,7 @@ fe::Mesh MakeRoller(const std::string& part,
     }
     // Under a deep spall the wall columns, moved onto x = +-w/2, can come close to their
     // neighbours, whose rays converge on the core: if a layer element next to the notch gets an
-    // interior angle below kMinNotchAngleDeg, this roller falls back to the old layout.
+    // interior angle below kMinNotchAngleDeg, this roller falls back to the legacy layout.
     double min_cos_margin = 1.0;  // smallest sin of an interior angle, as a validity measure
     for (int k = k_r - 1; k <= k_l; ++k)
       for (int j = 0; j < m; ++j) {

@@ -1,17 +1,10 @@
 #include "sim/bearing/model_builder.h"
 
-#include <unistd.h>
-
-#include <atomic>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <numbers>
 #include <sstream>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "sim/contact/penalty.h"
 
@@ -33,14 +26,6 @@ const Material& PartMaterial(const Scene& scene, const std::string& part) {
   if (part == "adapter") return m.adapter;
   if (part.rfind("roller", 0) == 0) return m.roller;
   throw InputError("bearing model: no material for mesh part '" + part + "'");
-}
-
-std::string TemporaryPath(const char* what) {
-  static std::atomic<int> counter{0};
-  return (std::filesystem::temp_directory_path() /
-          ("spallkit-solver-" + std::to_string(static_cast<long>(::getpid())) + "-" + what + "-" +
-           std::to_string(counter++)))
-      .string();
 }
 
 BodyMotion FitMotion(const fe::NodalState& s, const std::vector<int>& nodes) {
@@ -277,30 +262,9 @@ double FeBearingModel::SensorVelocity(int channel) const {
   return ch.direction == 'x' ? s.vx[ch.node] : s.vy[ch.node];
 }
 
-// The solver writes its checkpoint to a file: through a private temporary one.
-std::string FeBearingModel::SaveState() const {
-  const std::string tmp = TemporaryPath("save");
-  solver_->SaveCheckpoint(tmp);
-  std::ifstream in(tmp, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  in.close();
-  std::remove(tmp.c_str());
-  if (!in && os.str().empty()) throw InputError("bearing model: cannot read back the solver state");
-  return os.str();
-}
+std::string FeBearingModel::SaveState() const { return solver_->SaveState(); }
 
-void FeBearingModel::LoadState(const std::string& bytes) {
-  const std::string tmp = TemporaryPath("load");
-  WriteFileAtomically(tmp, bytes);
-  try {
-    solver_->LoadCheckpoint(tmp);
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
-  }
-  std::remove(tmp.c_str());
-}
+void FeBearingModel::LoadState(const std::string& bytes) { solver_->LoadState(bytes); }
 
 BodyMotion FeBearingModel::CageMotion() const {
   if (hybrid_) {
@@ -345,14 +309,13 @@ std::vector<std::string> FeBearingModel::Warnings() const {
   if (scene_.model.race_contact != "faceted") {
     // The curved race contact rolls the meshed rims as circles (measured at mu 0.01 on 0.5 and
     // 1.0 mm meshes), but on finer rims dented loaded nodes kink the fixed-curvature arcs and the
-    // blend has created energy (0.25 mm, 6000 rpm: 29 % at 4 ms in session 8; after session 9's
-    // weight share and ridge points 16.9 % at 24.5 ms; docs/CONTACT.md).
+    // blend creates energy (docs/CONTACT.md, "Limits").
     if (rim_spacing < kCurvedMinRimSpacing) {
       std::ostringstream os;
       os.precision(3);
       os << "the curved race contact on rims of " << facets << " facets (" << rim_spacing * 1e3
-         << " mm) has created energy where a loaded rim node dents "
-         << "(docs/CONTACT.md, open defect: 16.9 % at 24.5 ms on the 0.25 mm mesh at 6000 rpm); "
+         << " mm) creates energy where a loaded rim node dents "
+         << "(docs/CONTACT.md, \"Limits\"); "
          << "the run stops if the balance passes solver.max_energy_error_percent; "
          << "model.race_contact = \"smooth\" (the default) balances on this mesh";
       out.push_back(os.str());

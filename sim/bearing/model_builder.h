@@ -2,7 +2,7 @@
 // explicit solver with sections, constraints, loads and contact pairs, as in the paper
 // (Dynamic Analysis of Rolling Bearings with Roller Spalling Defects Based on Explicit FE, §2-3).
 //
-// What is built (docs/BEARING_MODEL.md, "The FE model", says why):
+// What is built (docs/BEARING_MODEL.md, "The full-FE model", says why):
 //  - Sections: plane strain, thickness = scene `thickness_mm` (the effective roller length l), so
 //    every force in the model is for the WHOLE section: the radial load is the scene's 10 kN
 //    itself, and contact forces compare directly with Harris–Jones roller loads for length l.
@@ -25,7 +25,7 @@
 //    velocities and would brake them).
 // Clearance: the mesher opens P_d/4 per side (Harris's diametral clearance, docs/SCENE.md).
 //
-// With the scene's model.fidelity = "hybrid" (DESIGN.md level 3) only the outer ring and the
+// With the scene's model.fidelity = "hybrid" (docs/BEARING_MODEL.md) only the outer ring and the
 // adapter are meshed (MeshBearingHousing; same tie, fixed bottom, damping and sensors as above)
 // and the rollers, cage and inner ring are rigid bodies with exact profiles in one
 // HybridRollers contributor (sim/bearing/hybrid_rollers.h): Palmgren contact with the raceway
@@ -71,7 +71,7 @@ class FeBearingModel : public BearingModel {
 
   solver::ExplicitSolver& solver() { return *solver_; }
   const solver::ExplicitSolver& solver() const { return *solver_; }
-  const BearingMesh& bearing_mesh() const { return mesh_; }
+  const BearingMesh& bearing_mesh() const override { return mesh_; }
   bool hybrid() const { return hybrid_ != nullptr; }
   // The rigid half of the hybrid model; nullptr in the FE model.
   const HybridRollers* hybrid_rollers() const { return hybrid_.get(); }

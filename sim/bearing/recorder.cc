@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <numbers>
 
+#include "core/checkpoint_io.h"
 #include "core/error.h"
 #include "core/hdf5.h"
 
@@ -21,43 +21,6 @@ constexpr const char* kEnergyTerms[] = {"kinetic",
                                         "external",
                                         "balance_error"};
 constexpr int kNumEnergyTerms = 8;
-
-// Minimal binary (de)serialisation of the recorder state.
-void PutRaw(std::string* out, const void* p, size_t n) {
-  out->append(static_cast<const char*>(p), n);
-}
-template <typename T>
-void Put(std::string* out, const T& v) {
-  PutRaw(out, &v, sizeof v);
-}
-void PutVec(std::string* out, const std::vector<double>& v) {
-  Put<std::uint64_t>(out, v.size());
-  PutRaw(out, v.data(), v.size() * sizeof(double));
-}
-
-struct Reader {
-  const std::string& s;
-  size_t pos = 0;
-  void Raw(void* p, size_t n) {
-    if (pos + n > s.size()) throw InputError("checkpoint: recorder state is truncated");
-    std::memcpy(p, s.data() + pos, n);
-    pos += n;
-  }
-  template <typename T>
-  T Get() {
-    T v;
-    Raw(&v, sizeof v);
-    return v;
-  }
-  std::vector<double> Vec() {
-    const auto n = Get<std::uint64_t>();
-    if (n > (s.size() - pos) / sizeof(double))
-      throw InputError("checkpoint: recorder state is truncated");
-    std::vector<double> v(n);
-    Raw(v.data(), n * sizeof(double));
-    return v;
-  }
-};
 
 double Wrap(double a) {  // to (-pi, pi]
   return a - 2.0 * std::numbers::pi * std::ceil((a - std::numbers::pi) / (2.0 * std::numbers::pi));
@@ -249,45 +212,45 @@ void Recorder::Write(h5::File* file) const {
 }
 
 std::string Recorder::SaveState() const {
-  std::string out;
-  Put<std::int32_t>(&out, num_samples_);
-  Put<std::int32_t>(&out, next_sample_);
-  Put<std::uint64_t>(&out, series_.size());
-  for (const Series& s : series_) PutVec(&out, s.data);
-  Put<std::int64_t>(&out, fine_index_);
-  Put(&out, prev_t_);
-  PutVec(&out, prev_v_);
-  PutVec(&out, last_fine_v_);
-  PutVec(&out, last_fine_a_);
-  Put<std::uint64_t>(&out, decimators_.size());
+  CheckpointWriter out;
+  out.Put<std::int32_t>(num_samples_);
+  out.Put<std::int32_t>(next_sample_);
+  out.Put<std::uint64_t>(series_.size());
+  for (const Series& s : series_) out.PutVector(s.data);
+  out.Put<std::int64_t>(fine_index_);
+  out.Put(prev_t_);
+  out.PutVector(prev_v_);
+  out.PutVector(last_fine_v_);
+  out.PutVector(last_fine_a_);
+  out.Put<std::uint64_t>(decimators_.size());
   for (size_t c = 0; c < decimators_.size(); ++c) {
-    PutVec(&out, decimators_[c].SaveState());
-    PutVec(&out, accel_out_[c]);
+    out.PutVector(decimators_[c].SaveState());
+    out.PutVector(accel_out_[c]);
   }
-  PutVec(&out, last_orbit_);
-  return out;
+  out.PutVector(last_orbit_);
+  return out.Take();
 }
 
 void Recorder::LoadState(const std::string& bytes) {
-  Reader r{bytes};
+  CheckpointReader r(bytes, "checkpoint: recorder state");
   if (r.Get<std::int32_t>() != num_samples_)
     throw InputError("checkpoint: recorder sample count differs (duration or output rate changed)");
   next_sample_ = r.Get<std::int32_t>();
   if (r.Get<std::uint64_t>() != series_.size())
     throw InputError("checkpoint: recorder outputs differ from the scene's");
-  for (Series& s : series_) s.data = r.Vec();
+  for (Series& s : series_) s.data = r.GetVector<double>();
   fine_index_ = r.Get<std::int64_t>();
   prev_t_ = r.Get<double>();
-  prev_v_ = r.Vec();
-  last_fine_v_ = r.Vec();
-  last_fine_a_ = r.Vec();
+  prev_v_ = r.GetVector<double>();
+  last_fine_v_ = r.GetVector<double>();
+  last_fine_a_ = r.GetVector<double>();
   if (r.Get<std::uint64_t>() != decimators_.size())
     throw InputError("checkpoint: recorder sensor channels differ from the scene's");
   for (size_t c = 0; c < decimators_.size(); ++c) {
-    decimators_[c].RestoreState(r.Vec());
-    accel_out_[c] = r.Vec();
+    decimators_[c].RestoreState(r.GetVector<double>());
+    accel_out_[c] = r.GetVector<double>();
   }
-  last_orbit_ = r.Vec();
+  last_orbit_ = r.GetVector<double>();
 }
 
 }  // namespace spallkit::sim

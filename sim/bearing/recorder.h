@@ -1,5 +1,5 @@
 // Output recording of a bearing run: what `spall simulate` writes to HDF5 (layout in
-// docs/BEARING_MODEL.md, "Output file", and DESIGN.md "Public formats").
+// docs/BEARING_MODEL.md, "Output file").
 //
 // The recorder is called after EVERY solver step (solver output_every_steps = 1) and at t = 0:
 //  - acceleration: each sensor channel's velocity is interpolated linearly between the solver's

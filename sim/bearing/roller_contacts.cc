@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
+#include "core/checkpoint_io.h"
 #include "core/constants.h"
 #include "core/error.h"
 #include "sim/quasistatic/harris_jones.h"
@@ -462,20 +462,18 @@ void RollerContacts::Integrate(double t, double dt) {
 }
 
 std::string RollerContacts::SaveState() const {
-  std::vector<double> v;
+  CheckpointWriter out;
   auto put_body = [&](const Body& b) {
-    for (double x : {b.x, b.y, b.angle, b.vx, b.vy, b.omega}) v.push_back(x);
+    for (double x : {b.x, b.y, b.angle, b.vx, b.vy, b.omega}) out.Put(x);
   };
   for (const Body& b : rollers_) put_body(b);
   put_body(cage_);
   put_body(shaft_);
-  v.insert(v.end(), friction_.begin(), friction_.end());
-  v.insert(v.end(), outer_force_.begin(), outer_force_.end());
-  v.insert(v.end(), inner_force_.begin(), inner_force_.end());
-  v.insert(v.end(), cage_force_.begin(), cage_force_.end());
+  for (const auto* v : {&friction_, &outer_force_, &inner_force_, &cage_force_})
+    for (double x : *v) out.Put(x);
   for (double x : {dt_prev_, potential_, kinetic_, friction_work_, damping_work_, external_work_})
-    v.push_back(x);
-  return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+    out.Put(x);
+  return out.Take();
 }
 
 void RollerContacts::LoadState(const std::string& bytes) {
@@ -483,22 +481,18 @@ void RollerContacts::LoadState(const std::string& bytes) {
   const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 6;
   if (bytes.size() != n * sizeof(double))
     throw InputError("roller contacts: checkpoint state has the wrong size");
-  std::vector<double> v(n);
-  std::memcpy(v.data(), bytes.data(), bytes.size());
-  size_t i = 0;
+  CheckpointReader in(bytes, "roller contacts: checkpoint state");
   auto get_body = [&](Body* b) {
-    for (double* x : {&b->x, &b->y, &b->angle, &b->vx, &b->vy, &b->omega}) *x = v[i++];
+    for (double* x : {&b->x, &b->y, &b->angle, &b->vx, &b->vy, &b->omega}) *x = in.Get<double>();
   };
   for (Body& b : rollers_) get_body(&b);
   get_body(&cage_);
   get_body(&shaft_);
-  for (double& x : friction_) x = v[i++];
-  for (double& x : outer_force_) x = v[i++];
-  for (double& x : inner_force_) x = v[i++];
-  for (double& x : cage_force_) x = v[i++];
+  for (auto* v : {&friction_, &outer_force_, &inner_force_, &cage_force_})
+    for (double& x : *v) x = in.Get<double>();
   for (double* x :
        {&dt_prev_, &potential_, &kinetic_, &friction_work_, &damping_work_, &external_work_})
-    *x = v[i++];
+    *x = in.Get<double>();
 }
 
 }  // namespace spallkit::sim

@@ -1,4 +1,4 @@
-// The rigid half of the hybrid and lumped bearing models (DESIGN.md "Fidelity ladder"): rollers,
+// The rigid half of the hybrid and lumped bearing models (docs/BEARING_MODEL.md): rollers,
 // cage and inner ring (shaft) as RIGID bodies with exact profiles (roller_profile.h), in contact
 // with an outer race that each model supplies (OuterRace: the FE ring's raceway nodes in the
 // hybrid model, a rigid ring on the housing's stiffness in the lumped model).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <set>
@@ -9,11 +10,14 @@
 
 #include "core/constants.h"
 #include "core/error.h"
+#include "sim/bearing/scene_limits.h"
 
 namespace spallkit::sim {
 namespace {
 
 constexpr double kMm = 1e-3;
+
+bool IsDigit(char c) { return c >= '0' && c <= '9'; }
 
 std::string Fmt(double v) {
   std::ostringstream os;
@@ -180,6 +184,7 @@ class Section {
   }
 
   toml::table* table() { return table_; }
+  const std::string& file() const { return *file_; }
 
  private:
   toml::table* table_;
@@ -269,6 +274,213 @@ void ReadGeometry(Section s, SceneGeometry* g) {
     s.Fail("adapter_width_mm", "must be smaller than the outer ring outer diameter");
 }
 
+void ReadMaterials(Section m, SceneMaterials* mat) {
+  const SceneMaterials def;
+  mat->outer_ring = ReadMaterial(m.Table("outer_ring"), def.outer_ring);
+  mat->inner_ring = ReadMaterial(m.Table("inner_ring"), def.inner_ring);
+  mat->roller = ReadMaterial(m.Table("roller"), def.roller);
+  mat->cage = ReadMaterial(m.Table("cage"), def.cage);
+  mat->adapter = ReadMaterial(m.Table("adapter"), def.adapter);
+  m.RejectUnknown();
+}
+
+// An array of tables under `key`; when absent, `defaults` is inserted (so it lands in the
+// effective scene) and returned.
+toml::array* TableArray(Section& top, const std::string& key, toml::array defaults) {
+  toml::node* n = top.Take(key);
+  if (!n) {
+    top.table()->insert(key, std::move(defaults));
+    n = top.table()->get(key);
+  }
+  auto* arr = n->as_array();
+  if (!arr) top.Fail(key, "expected an array of tables ([[" + key + "]])");
+  for (std::size_t i = 0; i < arr->size(); ++i)
+    if (!arr->get(i)->is_table())
+      throw InputError(Where(top.file(), arr->get(i)) + ": " + key + "." + std::to_string(i) +
+                       ": expected a table");
+  return arr;
+}
+
+Defect ReadDefect(Section s, const SceneGeometry& g) {
+  const int z = g.bearing.num_elements;
+  const double roller_d = g.bearing.element_diameter_m;
+  Defect d;
+  d.roller = s.Integer("roller", 0, 0, 1 << 20);
+  if (d.roller >= z)
+    s.Fail("roller",
+           "roller index " + std::to_string(d.roller) + " >= roller count " + std::to_string(z));
+  d.width_m = s.Number("width_mm", 1.38, kPositive) * kMm;
+  d.depth_m = s.Number("depth_mm", 0.59, kPositive) * kMm;
+  d.angle_rad = s.Number("angle_deg", 0.0, {-360.0, 360.0}) * kPi / 180.0;
+  d.edge_radius_m = s.Number("edge_radius_mm", 0.0, {0.0, 1.0}) * kMm;
+  const double t_mm = g.thickness_m / kMm;
+  d.length_m = s.Number("length_mm", t_mm, {0.0, t_mm}) * kMm;
+  if (!(d.length_m > 0)) s.Fail("length_mm", "must be > 0 (the spall's axial length)");
+  s.RejectUnknown();
+  if (!(d.width_m < roller_d))
+    s.Fail("width_mm",
+           "spall wider than the roller (" + Fmt(d.width_m / kMm) + " mm >= roller diameter " +
+               Fmt(roller_d / kMm) + " mm)");
+  const double r = 0.5 * roller_d;
+  const double sag = r - std::sqrt(r * r - 0.25 * d.width_m * d.width_m);
+  if (!(d.depth_m > sag))
+    s.Fail("depth_mm",
+           "must exceed " + Fmt(sag / kMm) + " mm, the rise of the roller surface over the " +
+               "spall mouth (else the flat bottom lies above the mouth)");
+  if (!(d.depth_m < 0.5 * r))
+    s.Fail("depth_mm", "must be below half the roller radius (" + Fmt(0.5 * r / kMm) + " mm)");
+  return d;
+}
+
+// [[defects]]: absent -> the paper's one spall; an empty array -> a healthy bearing.
+void ReadDefects(Section& top, const SceneGeometry& g, std::vector<Defect>* defects) {
+  toml::array paper_spall;
+  paper_spall.push_back(toml::table{});
+  toml::array* arr = TableArray(top, "defects", std::move(paper_spall));
+  std::set<int> rollers;
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    Section s(arr->get(i)->as_table(), "defects." + std::to_string(i) + ".", &top.file());
+    const Defect d = ReadDefect(s, g);
+    if (!rollers.insert(d.roller).second)
+      s.Fail("roller",
+             "roller " + std::to_string(d.roller) +
+                 " already has a spall (one spall per roller is supported)");
+    defects->push_back(d);
+  }
+}
+
+void ReadOperation(Section s, SceneOperation* op) {
+  op->radial_load_n = s.Number("radial_load_n", 10000.0, kNonNegative);
+  op->inner_ring_speed_rad_s = s.Number("speed_rpm", 1200.0, {0.0, 1e5}) * 2.0 * kPi / 60.0;
+  op->ramp_s = s.Number("ramp_s", 0.005, kNonNegative);
+  op->load_ramp_s = s.Number("load_ramp_s", op->ramp_s, kNonNegative);
+  s.RejectUnknown();
+}
+
+void ReadFriction(Section s, SceneFriction* f) {
+  f->mu_static = s.Number("mu_static", 0.01, {0.0, 2.0});
+  f->mu_dynamic = s.Number("mu_dynamic", 0.005, {0.0, 2.0});
+  f->decay_s_m = s.Number("decay_s_m", 0.0, kNonNegative);
+  s.RejectUnknown();
+  if (f->mu_dynamic > f->mu_static) s.Fail("mu_dynamic", "must not exceed mu_static");
+}
+
+void ReadDamping(Section s, SceneDamping* d) {
+  d->ratio = s.Number("ratio", 0.02, {0.0, 1.0});
+  d->reference_hz = s.Number("reference_hz", 1000.0, kPositive);
+  s.RejectUnknown();
+}
+
+// A string key that must be one of `choices`.
+std::string Choice(Section& s,
+                   const std::string& key,
+                   const std::string& def,
+                   const std::vector<std::string>& choices) {
+  const std::string v = s.String(key, def);
+  if (std::find(choices.begin(), choices.end(), v) != choices.end()) return v;
+  std::string list;
+  for (std::size_t i = 0; i < choices.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + ("\"" + choices[i] + "\"");
+  s.Fail(key, "expected " + list + ", got \"" + v + "\"");
+}
+
+void ReadModel(Section s,
+               const SceneGeometry& g,
+               const std::vector<Defect>& defects,
+               SceneModel* model) {
+  model->fidelity = Choice(s, "fidelity", "fe", {"fe", "hybrid", "lumped", "auto"});
+  model->adapter = Choice(s, "adapter", "elastic", {"elastic", "rigid"});
+  model->race_contact = Choice(s, "race_contact", "smooth", {"faceted", "curved", "smooth"});
+  // The FE section is 2-D: a spall runs through its whole thickness.
+  for (std::size_t i = 0; model->fidelity == "fe" && i < defects.size(); ++i)
+    if (defects[i].length_m < g.thickness_m * (1 - 1e-12))
+      s.Fail("fidelity",
+             "defects." + std::to_string(i) +
+                 ".length_mm is shorter than bearing.thickness_mm (a partial-length spall); "
+                 "that needs model.fidelity = \"hybrid\"");
+  s.RejectUnknown();
+}
+
+void ReadMesh(Section s,
+              const SceneModel& model,
+              const std::vector<Defect>& defects,
+              SceneMesh* mesh) {
+  mesh->size_m = s.Number("size_mm", 0.25, {0.0, 5.0, true, false}) * kMm;
+  mesh->contact_size_m =
+      s.Number("contact_size_mm", mesh->size_m / kMm, {0.0, mesh->size_m / kMm, true}) * kMm;
+  mesh->adapter_size_m =
+      s.Number("adapter_size_mm", std::max(1.0, mesh->size_m / kMm), {mesh->size_m / kMm, 20.0}) *
+      kMm;
+  s.RejectUnknown();
+  // The hybrid model's rollers are not meshed: their spalls are exact profiles.
+  for (std::size_t i = 0; model.fidelity == "fe" && i < defects.size(); ++i) {
+    const auto& d = defects[i];
+    if (d.width_m < 1.5 * mesh->contact_size_m || d.depth_m < mesh->contact_size_m)
+      s.Fail("contact_size_mm",
+             "too coarse for defects." + std::to_string(i) + " (" + Fmt(d.width_m / kMm) + " x " +
+                 Fmt(d.depth_m / kMm) +
+                 " mm): need width >= 1.5 and depth >= 1 element; refine mesh.size_mm");
+  }
+}
+
+Sensor ReadSensor(Section s, std::size_t index) {
+  Sensor sensor;
+  sensor.name = s.String("name", "sensor" + std::to_string(index));
+  sensor.x_m = s.Number("x_mm", 0.0, {-1000.0, 1000.0}) * kMm;
+  sensor.y_m = s.Number("y_mm", 0.0, {-1000.0, 1000.0}) * kMm;
+  sensor.directions = s.Strings("directions", {"x", "y"});
+  for (const auto& dir : sensor.directions)
+    if (dir != "x" && dir != "y")
+      s.Fail("directions", "expected \"x\" or \"y\", got \"" + dir + "\"");
+  s.RejectUnknown();
+  return sensor;
+}
+
+// [[sensors]]: absent -> one vertical sensor on top of the outer ring and one horizontal on its
+// side.
+void ReadSensors(Section& top, const SceneGeometry& g, std::vector<Sensor>* sensors) {
+  const double r_mm = g.outer_ring_outer_diameter_m / 2 / kMm;
+  toml::array defaults;
+  defaults.push_back(toml::table{
+      {"name", "top"}, {"x_mm", 0.0}, {"y_mm", r_mm}, {"directions", toml::array{"y"}}});
+  defaults.push_back(toml::table{
+      {"name", "side"}, {"x_mm", r_mm}, {"y_mm", 0.0}, {"directions", toml::array{"x"}}});
+  toml::array* arr = TableArray(top, "sensors", std::move(defaults));
+  for (std::size_t i = 0; i < arr->size(); ++i)
+    sensors->push_back(ReadSensor(
+        Section(arr->get(i)->as_table(), "sensors." + std::to_string(i) + ".", &top.file()), i));
+}
+
+void ReadRun(Section s, SceneRun* run, std::vector<std::string>* outputs) {
+  run->duration_s = s.Number("duration_s", 0.2, kPositive);
+  run->output_rate_hz = s.Number("output_rate_hz", 20000.0, kPositive);
+  const auto known = KnownOutputs();
+  *outputs = s.Strings("outputs", {"contact_forces", "acceleration", "cage", "rollers", "energy"});
+  for (const auto& o : *outputs)
+    if (std::find(known.begin(), known.end(), o) == known.end()) {
+      std::string list;
+      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+      s.Fail("outputs", "unknown output \"" + o + "\" (known: " + list + ")");
+    }
+  Section tol = s.Table("tolerance");
+  SceneTolerance& t = run->tolerance;
+  t.f_b = tol.Number("f_b", t.f_b, kPositive);
+  t.f_c = tol.Number("f_c", t.f_c, kPositive);
+  t.cage_slip = tol.Number("cage_slip", t.cage_slip, kPositive);
+  t.roller_load = tol.Number("roller_load", t.roller_load, kPositive);
+  tol.RejectUnknown();
+  s.RejectUnknown();
+}
+
+void ReadSolver(Section s, SceneSolver* solver) {
+  solver->time_step_safety = s.Number("time_step_safety", 0.9, {0.0, 1.0, true, false});
+  solver->threads = s.Integer("threads", 0, 0, 1024);
+  solver->checkpoint_interval_s = s.Number("checkpoint_interval_s", 0.0, kNonNegative);
+  solver->max_energy_error_percent =
+      s.Number("max_energy_error_percent", 5.0, {0.0, 100.0, false, false});
+  s.RejectUnknown();
+}
+
 }  // namespace
 
 std::vector<std::string> KnownOutputs() {
@@ -319,8 +531,8 @@ void ApplyOverride(toml::table& table, const std::string& assignment) {
     if (auto t = cur->as_table()) {
       if (!t->contains(p)) {
         // Numeric next component: an array of tables; else a table.
-        const bool next_index = !parts[i + 1].empty() &&
-                                std::all_of(parts[i + 1].begin(), parts[i + 1].end(), ::isdigit);
+        const bool next_index =
+            !parts[i + 1].empty() && std::all_of(parts[i + 1].begin(), parts[i + 1].end(), IsDigit);
         if (next_index)
           t->insert(p, toml::array{});
         else
@@ -328,8 +540,8 @@ void ApplyOverride(toml::table& table, const std::string& assignment) {
       }
       cur = t->get(p);
     } else if (auto a = cur->as_array()) {
-      if (!std::all_of(p.begin(), p.end(), ::isdigit))
-        throw InputError(where + ": '" + p + "' must be an array index");
+      if (!std::all_of(p.begin(), p.end(), IsDigit) || p.size() > 9)
+        throw InputError(where + ": '" + p + "' must be an array index (at most 9 digits)");
       const std::size_t idx = std::stoul(p);
       if (idx == a->size()) a->push_back(toml::table{});
       if (idx >= a->size())
@@ -376,219 +588,24 @@ Scene ParseScene(const std::string& toml_text,
 
   Scene scene;
   scene.source = source_name;
-  const std::string* file = &scene.source;
-  Section top(&root, "", file);
-
+  Section top(&root, "", &scene.source);
+  // Order matters: defects need the geometry, the model and mesh checks need the defects.
   ReadGeometry(top.Table("bearing"), &scene.geometry);
-  const SceneGeometry& g = scene.geometry;
-  const int z = g.bearing.num_elements;
-  const double roller_d = g.bearing.element_diameter_m;
-
-  {
-    Section m = top.Table("materials");
-    SceneMaterials& mat = scene.materials;
-    const SceneMaterials def;
-    mat.outer_ring = ReadMaterial(m.Table("outer_ring"), def.outer_ring);
-    mat.inner_ring = ReadMaterial(m.Table("inner_ring"), def.inner_ring);
-    mat.roller = ReadMaterial(m.Table("roller"), def.roller);
-    mat.cage = ReadMaterial(m.Table("cage"), def.cage);
-    mat.adapter = ReadMaterial(m.Table("adapter"), def.adapter);
-    m.RejectUnknown();
-  }
-
-  // [[defects]]: absent -> the paper's one spall; an empty array -> a healthy bearing.
-  {
-    toml::node* n = top.Take("defects");
-    if (!n) {
-      toml::array a;
-      a.push_back(toml::table{});
-      root.insert("defects", std::move(a));
-      n = root.get("defects");
-    }
-    auto* arr = n->as_array();
-    if (!arr) top.Fail("defects", "expected an array of tables ([[defects]])");
-    std::set<int> rollers;
-    for (std::size_t i = 0; i < arr->size(); ++i) {
-      auto* t = arr->get(i)->as_table();
-      const std::string prefix = "defects." + std::to_string(i) + ".";
-      if (!t)
-        throw InputError(Where(*file, arr->get(i)) + ": defects." + std::to_string(i) +
-                         ": expected a table");
-      Section s(t, prefix, file);
-      Defect d;
-      d.roller = s.Integer("roller", 0, 0, 1 << 20);
-      if (d.roller >= z)
-        s.Fail(
-            "roller",
-            "roller index " + std::to_string(d.roller) + " >= roller count " + std::to_string(z));
-      if (!rollers.insert(d.roller).second)
-        s.Fail("roller",
-               "roller " + std::to_string(d.roller) +
-                   " already has a spall (one spall per roller is supported)");
-      d.width_m = s.Number("width_mm", 1.38, kPositive) * kMm;
-      d.depth_m = s.Number("depth_mm", 0.59, kPositive) * kMm;
-      d.angle_rad = s.Number("angle_deg", 0.0, {-360.0, 360.0}) * kPi / 180.0;
-      d.edge_radius_m = s.Number("edge_radius_mm", 0.0, {0.0, 1.0}) * kMm;
-      const double t_mm = scene.geometry.thickness_m / kMm;
-      d.length_m = s.Number("length_mm", t_mm, {0.0, t_mm}) * kMm;
-      if (!(d.length_m > 0)) s.Fail("length_mm", "must be > 0 (the spall's axial length)");
-      s.RejectUnknown();
-      if (!(d.width_m < roller_d))
-        s.Fail("width_mm",
-               "spall wider than the roller (" + Fmt(d.width_m / kMm) + " mm >= roller diameter " +
-                   Fmt(roller_d / kMm) + " mm)");
-      const double r = 0.5 * roller_d;
-      const double sag = r - std::sqrt(r * r - 0.25 * d.width_m * d.width_m);
-      if (!(d.depth_m > sag))
-        s.Fail("depth_mm",
-               "must exceed " + Fmt(sag / kMm) + " mm, the rise of the roller surface over the " +
-                   "spall mouth (else the flat bottom lies above the mouth)");
-      if (!(d.depth_m < 0.5 * r))
-        s.Fail("depth_mm", "must be below half the roller radius (" + Fmt(0.5 * r / kMm) + " mm)");
-      scene.defects.push_back(d);
-    }
-  }
-
-  {
-    Section s = top.Table("operation");
-    scene.operation.radial_load_n = s.Number("radial_load_n", 10000.0, kNonNegative);
-    scene.operation.inner_ring_speed_rad_s =
-        s.Number("speed_rpm", 1200.0, {0.0, 1e5}) * 2.0 * kPi / 60.0;
-    scene.operation.ramp_s = s.Number("ramp_s", 0.005, kNonNegative);
-    scene.operation.load_ramp_s = s.Number("load_ramp_s", scene.operation.ramp_s, kNonNegative);
-    s.RejectUnknown();
-  }
-  {
-    Section s = top.Table("friction");
-    scene.friction.mu_static = s.Number("mu_static", 0.01, {0.0, 2.0});
-    scene.friction.mu_dynamic = s.Number("mu_dynamic", 0.005, {0.0, 2.0});
-    scene.friction.decay_s_m = s.Number("decay_s_m", 0.0, kNonNegative);
-    s.RejectUnknown();
-    if (scene.friction.mu_dynamic > scene.friction.mu_static)
-      s.Fail("mu_dynamic", "must not exceed mu_static");
-  }
-  {
-    Section s = top.Table("damping");
-    scene.damping.ratio = s.Number("ratio", 0.02, {0.0, 1.0});
-    scene.damping.reference_hz = s.Number("reference_hz", 1000.0, kPositive);
-    s.RejectUnknown();
-  }
-  {
-    Section s = top.Table("model");
-    scene.model.fidelity = s.String("fidelity", "fe");
-    if (scene.model.fidelity != "fe" && scene.model.fidelity != "hybrid" &&
-        scene.model.fidelity != "lumped" && scene.model.fidelity != "auto")
-      s.Fail("fidelity",
-             "expected \"fe\", \"hybrid\", \"lumped\" or \"auto\", got \"" +
-                 scene.model.fidelity + "\"");
-    scene.model.adapter = s.String("adapter", "elastic");
-    if (scene.model.adapter != "elastic" && scene.model.adapter != "rigid")
-      s.Fail("adapter", "expected \"elastic\" or \"rigid\", got \"" + scene.model.adapter + "\"");
-    scene.model.race_contact = s.String("race_contact", "smooth");
-    if (scene.model.race_contact != "faceted" && scene.model.race_contact != "curved" &&
-        scene.model.race_contact != "smooth")
-      s.Fail("race_contact",
-             "expected \"faceted\", \"curved\" or \"smooth\", got \"" + scene.model.race_contact +
-                 "\"");
-    // The FE section is 2-D: a spall runs through its whole thickness.
-    for (std::size_t i = 0; scene.model.fidelity == "fe" && i < scene.defects.size(); ++i)
-      if (scene.defects[i].length_m < scene.geometry.thickness_m * (1 - 1e-12))
-        s.Fail("fidelity",
-               "defects." + std::to_string(i) +
-                   ".length_mm is shorter than bearing.thickness_mm (a partial-length spall); "
-                   "that needs model.fidelity = \"hybrid\"");
-    s.RejectUnknown();
-  }
-  {
-    Section s = top.Table("mesh");
-    scene.mesh.size_m = s.Number("size_mm", 0.25, {0.0, 5.0, true, false}) * kMm;
-    scene.mesh.contact_size_m =
-        s.Number("contact_size_mm", scene.mesh.size_m / kMm, {0.0, scene.mesh.size_m / kMm, true}) *
-        kMm;
-    scene.mesh.adapter_size_m = s.Number("adapter_size_mm",
-                                         std::max(1.0, scene.mesh.size_m / kMm),
-                                         {scene.mesh.size_m / kMm, 20.0}) *
-                                kMm;
-    s.RejectUnknown();
-    // The hybrid model's rollers are not meshed: their spalls are exact profiles.
-    for (std::size_t i = 0; scene.model.fidelity == "fe" && i < scene.defects.size(); ++i) {
-      const auto& d = scene.defects[i];
-      if (d.width_m < 1.5 * scene.mesh.contact_size_m || d.depth_m < scene.mesh.contact_size_m)
-        s.Fail("contact_size_mm",
-               "too coarse for defects." + std::to_string(i) + " (" + Fmt(d.width_m / kMm) + " x " +
-                   Fmt(d.depth_m / kMm) +
-                   " mm): need width >= 1.5 and depth >= 1 element; refine mesh.size_mm");
-    }
-  }
-  {
-    toml::node* n = top.Take("sensors");
-    if (!n) {
-      toml::array a;
-      a.push_back(toml::table{{"name", "top"},
-                              {"x_mm", 0.0},
-                              {"y_mm", g.outer_ring_outer_diameter_m / 2 / kMm},
-                              {"directions", toml::array{"y"}}});
-      a.push_back(toml::table{{"name", "side"},
-                              {"x_mm", g.outer_ring_outer_diameter_m / 2 / kMm},
-                              {"y_mm", 0.0},
-                              {"directions", toml::array{"x"}}});
-      root.insert("sensors", std::move(a));
-      n = root.get("sensors");
-    }
-    auto* arr = n->as_array();
-    if (!arr) top.Fail("sensors", "expected an array of tables ([[sensors]])");
-    for (std::size_t i = 0; i < arr->size(); ++i) {
-      auto* t = arr->get(i)->as_table();
-      if (!t)
-        throw InputError(Where(*file, arr->get(i)) + ": sensors." + std::to_string(i) +
-                         ": expected a table");
-      Section s(t, "sensors." + std::to_string(i) + ".", file);
-      Sensor sensor;
-      sensor.name = s.String("name", "sensor" + std::to_string(i));
-      sensor.x_m = s.Number("x_mm", 0.0, {-1000.0, 1000.0}) * kMm;
-      sensor.y_m = s.Number("y_mm", 0.0, {-1000.0, 1000.0}) * kMm;
-      sensor.directions = s.Strings("directions", {"x", "y"});
-      for (const auto& dir : sensor.directions)
-        if (dir != "x" && dir != "y")
-          s.Fail("directions", "expected \"x\" or \"y\", got \"" + dir + "\"");
-      s.RejectUnknown();
-      scene.sensors.push_back(sensor);
-    }
-  }
-  {
-    Section s = top.Table("run");
-    scene.run.duration_s = s.Number("duration_s", 0.2, kPositive);
-    scene.run.output_rate_hz = s.Number("output_rate_hz", 20000.0, kPositive);
-    const auto known = KnownOutputs();
-    scene.outputs =
-        s.Strings("outputs", {"contact_forces", "acceleration", "cage", "rollers", "energy"});
-    for (const auto& o : scene.outputs)
-      if (std::find(known.begin(), known.end(), o) == known.end()) {
-        std::string list;
-        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-        s.Fail("outputs", "unknown output \"" + o + "\" (known: " + list + ")");
-      }
-    {
-      Section tol = s.Table("tolerance");
-      SceneTolerance& t = scene.run.tolerance;
-      t.f_b = tol.Number("f_b", t.f_b, kPositive);
-      t.f_c = tol.Number("f_c", t.f_c, kPositive);
-      t.cage_slip = tol.Number("cage_slip", t.cage_slip, kPositive);
-      t.roller_load = tol.Number("roller_load", t.roller_load, kPositive);
-      tol.RejectUnknown();
-    }
-    s.RejectUnknown();
-  }
-  {
-    Section s = top.Table("solver");
-    scene.solver.time_step_safety = s.Number("time_step_safety", 0.9, {0.0, 1.0, true, false});
-    scene.solver.threads = s.Integer("threads", 0, 0, 1024);
-    scene.solver.checkpoint_interval_s = s.Number("checkpoint_interval_s", 0.0, kNonNegative);
-    scene.solver.max_energy_error_percent =
-        s.Number("max_energy_error_percent", 5.0, {0.0, 100.0, false, false});
-    s.RejectUnknown();
-  }
+  ReadMaterials(top.Table("materials"), &scene.materials);
+  ReadDefects(top, scene.geometry, &scene.defects);
+  ReadOperation(top.Table("operation"), &scene.operation);
+  ReadFriction(top.Table("friction"), &scene.friction);
+  ReadDamping(top.Table("damping"), &scene.damping);
+  ReadModel(top.Table("model"), scene.geometry, scene.defects, &scene.model);
+  ReadMesh(top.Table("mesh"), scene.model, scene.defects, &scene.mesh);
+  ReadSensors(top, scene.geometry, &scene.sensors);
+  ReadRun(top.Table("run"), &scene.run, &scene.outputs);
+  ReadSolver(top.Table("solver"), &scene.solver);
   top.RejectUnknown();
+  if (const auto v = FindSceneLimitViolation(scene)) {
+    const toml::node* node = root.at_path(v->key).node();
+    throw InputError(Where(scene.source, node) + ": " + v->key + ": " + v->reason);
+  }
 
   std::ostringstream os;
   os << root;
@@ -597,10 +614,15 @@ Scene ParseScene(const std::string& toml_text,
 }
 
 Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  // A folder opens as an empty stream on Linux and would run the default scene.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path + ": is a directory, expected a scene file (TOML)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open scene file");
   std::ostringstream text;
   text << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": read error");
   return ParseScene(text.str(), path, overrides);
 }
 

@@ -116,7 +116,7 @@ struct SceneRun {
   SceneTolerance tolerance;
 };
 
-// Which model `spall simulate` builds (DESIGN.md "Fidelity ladder"):
+// Which model `spall simulate` builds (docs/BEARING_MODEL.md):
 //  - "fe": every part meshed (level 4, the paper's model; sim/bearing/model_builder.h);
 //  - "hybrid": outer ring + adapter meshed, rollers / cage / inner ring rigid bodies with exact
 //    profiles and Palmgren contact (level 3, sim/bearing/hybrid_rollers.h). The mesh keys then
@@ -129,7 +129,7 @@ struct SceneModel {
   std::string fidelity = "fe";
   // "elastic": the adapter is FE (steel, scene materials.adapter); "rigid": every adapter node
   // fixed, so the outer ring is held rigidly over the seat (Table 1 gives the adapter no
-  // material; docs/BEARING_MODEL.md, "Harris-Jones with the real housing").
+  // material; docs/BEARING_MODEL.md, "Limits").
   std::string adapter = "elastic";
   // Roller-race contact of the full FE ("fe" only): "smooth" (roller rims and raceways as cubic
   // B-splines through their nodes, docs/CONTACT.md "Smooth surfaces": C2 contact forces, energy

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/checkpoint_io.h"
 #include "core/error.h"
 #include "core/hdf5.h"
 #include "core/record_io.h"
@@ -25,23 +26,6 @@ std::string ReadAll(const std::string& path) {
   std::ostringstream os;
   os << in.rdbuf();
   return os.str();
-}
-
-void PutBlob(std::string* out, const std::string& blob) {
-  const std::uint64_t n = blob.size();
-  out->append(reinterpret_cast<const char*>(&n), sizeof n);
-  out->append(blob);
-}
-
-std::string GetBlob(const std::string& s, size_t* pos, const std::string& path) {
-  std::uint64_t n = 0;
-  if (*pos + sizeof n > s.size()) throw InputError(path + ": checkpoint is truncated");
-  std::memcpy(&n, s.data() + *pos, sizeof n);
-  *pos += sizeof n;
-  if (n > s.size() - *pos) throw InputError(path + ": checkpoint is truncated");
-  std::string blob = s.substr(*pos, n);
-  *pos += n;
-  return blob;
 }
 
 }  // namespace
@@ -81,22 +65,23 @@ Simulation::Simulation(const Scene& scene, SimulationOptions options)
 }
 
 void Simulation::SaveCheckpoint(const std::string& path) const {
-  std::string out(kMagic, sizeof kMagic);
-  PutBlob(&out, model_->scene().effective_toml);
-  PutBlob(&out, model_->SaveState());
-  PutBlob(&out, recorder_->SaveState());
-  WriteFileAtomically(path, out);
+  CheckpointWriter out;
+  for (char c : kMagic) out.Put(c);
+  out.PutBytes(model_->scene().effective_toml);
+  out.PutBytes(model_->SaveState());
+  out.PutBytes(recorder_->SaveState());
+  WriteFileAtomically(path, out.bytes());
 }
 
 void Simulation::LoadCheckpoint(const std::string& path) {
   const std::string s = ReadAll(path);
   if (s.size() < sizeof kMagic || std::memcmp(s.data(), kMagic, sizeof kMagic) != 0)
     throw InputError(path + ": not a spall simulate checkpoint");
-  size_t pos = sizeof kMagic;
-  if (GetBlob(s, &pos, path) != model_->scene().effective_toml)
+  CheckpointReader in(std::string_view(s).substr(sizeof kMagic), path + ": checkpoint");
+  if (in.GetBytes() != model_->scene().effective_toml)
     throw InputError(path + ": checkpoint was written for a different scene (or --set values)");
-  const std::string model_blob = GetBlob(s, &pos, path);
-  const std::string recorder_blob = GetBlob(s, &pos, path);
+  const std::string model_blob = in.GetBytes();
+  const std::string recorder_blob = in.GetBytes();
   try {
     model_->LoadState(model_blob);
     recorder_->LoadState(recorder_blob);

@@ -14,11 +14,11 @@
 
 namespace spallkit::sim::contact {
 
-// The helpers are templates so that contact_pair.cc can evaluate the same geometry on automatic-
-// differentiation numbers (ceres::Jet) for the exact gradient of a penetration; T = double
-// elsewhere. (Unqualified sqrt: std's for double, ceres' by argument lookup for Jet. Lengths are
-// sqrt(x^2 + y^2), not hypot: coordinates are metres, nothing to overflow, and libm's hypot was
-// 15 % of a curved bearing run.)
+// The helpers are templates so that arc_blend_contact.cc can evaluate the same geometry on
+// automatic-differentiation numbers (ceres::Jet) for the exact gradient of a penetration; T =
+// double elsewhere. (Unqualified sqrt: std's for double, ceres' by argument lookup for Jet. Lengths
+// are sqrt(x^2 + y^2), not hypot: coordinates are metres, nothing to overflow, and hypot is much
+// slower.)
 
 // Outward unit normal (dy, -dx) / L of the chord a -> b (body on the left); returns L. Zero
 // normal for a zero-length chord.

@@ -1,6 +1,6 @@
 // Penalty stiffness laws for node-to-segment contact.
 //
-// Two laws, as in LS-DYNA / OpenRadioss (see docs/CONTACT.md and fe-notes §4):
+// Two laws, as in LS-DYNA / OpenRadioss (see docs/CONTACT.md):
 //  - kBulkModulus (LS-DYNA SOFT=0, OpenRadioss 2-D interfaces, starter i3sti2.F):
 //        k = f * K * L_seg^2 / A_elem * t     (N/m)
 //    K bulk modulus of the master element behind the segment, L_seg segment length, A_elem that

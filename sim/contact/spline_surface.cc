@@ -122,13 +122,13 @@ bool Normalise(const SplineSurface& s, int* span, double* t) {
 double Cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 }  // namespace
 
-bool SplineClosestPoints(const ContactSurface& slave,
-                         const SplineSurface& slave_spline,
-                         const ContactSurface& master,
-                         const SplineSurface& master_spline,
+bool SplineClosestPoints(SplineSide slave,
+                         SplineSide master,
                          const double* x,
                          const double* y,
                          SplineContactPoint* point) {
+  const SplineSurface& slave_spline = slave.spline;
+  const SplineSurface& master_spline = master.spline;
   SplineContactPoint& p = *point;
   if (p.slave_span < 0 || p.master_span < 0 || !slave_spline.valid_span[p.slave_span] ||
       !master_spline.valid_span[p.master_span])
@@ -136,8 +136,8 @@ bool SplineClosestPoints(const ContactSurface& slave,
   constexpr int kMaxIterations = 40;
   constexpr double kTolerance = 1e-11;  // in span parameters (a span is one node spacing)
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    const SplinePoint a = EvaluateSpan(slave, slave_spline, p.slave_span, p.t, x, y);
-    const SplinePoint b = EvaluateSpan(master, master_spline, p.master_span, p.s, x, y);
+    const SplinePoint a = EvaluateSpan(slave.surface, slave_spline, p.slave_span, p.t, x, y);
+    const SplinePoint b = EvaluateSpan(master.surface, master_spline, p.master_span, p.s, x, y);
     const double dx = a.x - b.x, dy = a.y - b.y;
     // G1: the slave point projects onto the master point; G2: the tangents are parallel.
     const double g1 = dx * b.dx + dy * b.dy;
@@ -160,8 +160,8 @@ bool SplineClosestPoints(const ContactSurface& slave,
       return false;
     if (std::abs(step_t) < kTolerance && std::abs(step_s) < kTolerance) {
       if (!(j11 < 0.0)) return false;  // tangents the same way: the far side, not facing
-      const SplinePoint sa = EvaluateSpan(slave, slave_spline, p.slave_span, p.t, x, y);
-      const SplinePoint sb = EvaluateSpan(master, master_spline, p.master_span, p.s, x, y);
+      const SplinePoint sa = EvaluateSpan(slave.surface, slave_spline, p.slave_span, p.t, x, y);
+      const SplinePoint sb = EvaluateSpan(master.surface, master_spline, p.master_span, p.s, x, y);
       const double l = std::sqrt(sb.dx * sb.dx + sb.dy * sb.dy);
       if (!(l > 0.0)) return false;
       p.nx = sb.dy / l, p.ny = -sb.dx / l;

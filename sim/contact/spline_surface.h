@@ -2,9 +2,9 @@
 //
 // Why: a point contact force applied to FE nodes with the chord's linear weights (1 - xi, xi), or
 // the arc contact's, changes its slope every time the contact crosses a node. On the full-FE
-// bearing that broadband excitation drove the rings' 5-8 kHz modes to ~1000 m/s^2 at the sensor
-// (docs/BEARING_MODEL.md, "What drives that noise"). The hybrid model showed it directly: spreading
-// its raceway contact over two nodes with a hat is 10x louder than a C2 kernel over four.
+// bearing that broadband excitation drives the rings' 5-8 kHz modes (docs/BEARING_MODEL.md,
+// "Limits"); on the hybrid model, spreading its raceway contact over two nodes with a hat is 10x
+// louder than a C2 kernel over four.
 //
 // What: the nodes of a smooth part of a surface (both neighbouring segments arcs of the same sense:
 // a roller rim, a raceway) are the control points of a uniform cubic B-spline c(u). On nodes
@@ -84,10 +84,13 @@ struct SplineContactPoint {
 // Newton from the start in *point (spans and parameters); moves across spans as the parameters
 // leave [0, 1]. Returns false when it leaves the valid spans or does not converge; then *point
 // keeps the last iterate.
-bool SplineClosestPoints(const ContactSurface& slave,
-                         const SplineSurface& slave_spline,
-                         const ContactSurface& master,
-                         const SplineSurface& master_spline,
+// A surface and its B-spline view.
+struct SplineSide {
+  const ContactSurface& surface;
+  const SplineSurface& spline;
+};
+bool SplineClosestPoints(SplineSide slave,
+                         SplineSide master,
                          const double* x,
                          const double* y,
                          SplineContactPoint* point);

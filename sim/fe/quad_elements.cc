@@ -4,9 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <istream>
 #include <limits>
-#include <ostream>
 #include <sstream>
 
 #include "core/error.h"
@@ -14,23 +12,6 @@
 
 namespace spallkit::sim::fe {
 namespace {
-
-template <typename T>
-void WriteVec(std::ostream& out, const std::vector<T>& v) {
-  const std::uint64_t n = v.size();
-  out.write(reinterpret_cast<const char*>(&n), sizeof n);
-  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
-}
-
-template <typename T>
-void ReadVec(std::istream& in, std::vector<T>* v, const char* what) {
-  std::uint64_t n = 0;
-  in.read(reinterpret_cast<char*>(&n), sizeof n);
-  if (!in || n != v->size())
-    throw InputError(std::string("checkpoint: element array '") + what + "' has the wrong size");
-  in.read(reinterpret_cast<char*>(v->data()), static_cast<std::streamsize>(n * sizeof(T)));
-  if (!in) throw InputError(std::string("checkpoint: truncated element array '") + what + "'");
-}
 
 // By value (std::max returns a reference, which GCC vectorises as a select of addresses plus a
 // gather from the stack).
@@ -413,13 +394,13 @@ void QuadElements::Centroid(const NodalState& s, int e, double* x, double* y) co
   *y = 0.25 * (s.y[n1_[e]] + s.y[n2_[e]] + s.y[n3_[e]] + s.y[n4_[e]]);
 }
 
-void QuadElements::Save(std::ostream& out) const {
+void QuadElements::Save(CheckpointWriter* out) const {
   for (const auto* v :
        {&sxx_, &syy_, &sxy_, &szz_, &qx_, &qy_, &block_int_, &block_hg_, &block_damp_})
-    WriteVec(out, *v);
+    out->PutVector(*v);
 }
 
-void QuadElements::Load(std::istream& in) {
+void QuadElements::Load(CheckpointReader* in) {
   const char* names[] = {"sxx",
                          "syy",
                          "sxy",
@@ -431,7 +412,7 @@ void QuadElements::Load(std::istream& in) {
                          "damping energy"};
   int k = 0;
   for (auto* v : {&sxx_, &syy_, &sxy_, &szz_, &qx_, &qy_, &block_int_, &block_hg_, &block_damp_})
-    ReadVec(in, v, names[k++]);
+    in->GetVectorInto(v, names[k++]);
 }
 
 }  // namespace spallkit::sim::fe

@@ -22,9 +22,9 @@
 #pragma once
 
 #include <cstdint>
-#include <iosfwd>
 #include <vector>
 
+#include "core/checkpoint_io.h"
 #include "sim/fe/mesh.h"
 #include "sim/fe/nodal_state.h"
 #include "sim/fe/section.h"
@@ -97,8 +97,8 @@ class QuadElements {
   const std::vector<int>& connectivity(int corner) const;  // node ids of corner 0..3
 
   // Raw element state for checkpoints.
-  void Save(std::ostream& out) const;
-  void Load(std::istream& in);
+  void Save(CheckpointWriter* out) const;
+  void Load(CheckpointReader* in);
 
  private:
   struct Block {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -10,6 +11,9 @@
 
 namespace spallkit::sim {
 namespace {
+
+constexpr int kMaxBracketDoublings = 1100;
+constexpr double kMaxLengthToDiameter = 10.0;  // needle rollers reach l/d ~ 10
 
 std::string Num(double v) {
   std::ostringstream os;
@@ -85,7 +89,10 @@ bool LoadDistributionOptions::IsValid(std::string* error) const {
   if (!(diametral_clearance_m >= 0) || !std::isfinite(diametral_clearance_m))
     return fail("diametral clearance must be >= 0 (got " + Num(diametral_clearance_m * 1e3) +
                 " mm; preload is not modelled)");
-  if (!std::isfinite(phase_rad)) return fail("roller phase must be finite");
+  // Beyond one turn either way the roller angles lose their spacing in rounding.
+  if (!(std::abs(phase_rad) <= 2.0 * kPi))
+    return fail("roller phase must be within +-360 deg (got " + Num(phase_rad * 180.0 / kPi) +
+                " deg)");
   if (!(roller_density_kg_m3 >= 0) || !std::isfinite(roller_density_kg_m3))
     return fail("roller density must be >= 0 kg/m^3");
   if (!(palmgren_coefficient > 0)) return fail("Palmgren coefficient must be > 0");
@@ -98,6 +105,13 @@ double PalmgrenContactStiffness(double roller_length_m, double coefficient) {
   // K_c [N/mm^(10/9)] = coefficient * l_mm^(8/9); delta_mm = 1e3 delta_m.
   const double k_mm = coefficient * std::pow(roller_length_m * 1e3, 8.0 / 9.0);
   return k_mm * std::pow(1e3, 10.0 / 9.0);
+}
+
+double HertzLinePressure(
+    double load_n, double length_m, double r1_m, double r2_m, double contact_modulus_pa) {
+  if (!(load_n > 0)) return 0.0;
+  const double r_eff = 1.0 / (1.0 / r1_m + 1.0 / r2_m);
+  return std::sqrt(load_n / length_m * contact_modulus_pa / (kPi * r_eff));
 }
 
 double RadialIntegral(double epsilon) {
@@ -126,6 +140,17 @@ void SolveLoadDistribution(const LoadDistributionOptions& options,
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
   bearing.Validate();
+  // Limits of the model against the bearing: a clearance of a roller diameter or a roller many
+  // diameters long is outside what the line-contact law describes (and would stall the solver).
+  if (!(options.diametral_clearance_m < bearing.element_diameter_m))
+    throw InputError("diametral clearance must be below the roller diameter (" +
+                     Num(bearing.element_diameter_m * 1e3) + " mm; got " +
+                     Num(options.diametral_clearance_m * 1e3) + " mm)");
+  if (!(options.roller_length_m <= kMaxLengthToDiameter * bearing.element_diameter_m))
+    throw InputError("roller length must be at most " + Num(kMaxLengthToDiameter) +
+                     " roller diameters (" +
+                     Num(kMaxLengthToDiameter * bearing.element_diameter_m * 1e3) + " mm; got " +
+                     Num(options.roller_length_m * 1e3) + " mm)");
 
   LoadDistributionSummary& s = *summary;
   s = LoadDistributionSummary();
@@ -167,8 +192,25 @@ void SolveLoadDistribution(const LoadDistributionOptions& options,
   if (options.radial_load_n > 0) {
     // Bracket: R(P_d/2) = -F_r < 0 (no roller is squeezed); grow hi until R(hi) >= 0.
     double lo = half_pd;
-    double hi = half_pd + std::pow(options.radial_load_n / (0.25 * z * kn), 0.9);
-    while (residual(hi, nullptr) < 0) hi = half_pd + 2.0 * (hi - half_pd);
+    // The step grows from at least one ulp of P_d/2 (a tiny load on a large clearance would
+    // otherwise never move hi) and doubles a bounded number of times: R grows like
+    // delta^(10/9) once a roller is squeezed, so 2^1100 covers every finite load.
+    double step = std::max(std::pow(options.radial_load_n / (0.25 * z * kn), 0.9),
+                           4.0 * std::numeric_limits<double>::epsilon() * half_pd);
+    double hi = half_pd + step;
+    int doublings = 0;
+    for (; residual(hi, nullptr) < 0 && doublings < kMaxBracketDoublings; ++doublings) {
+      step *= 2.0;
+      hi = half_pd + step;
+      if (!std::isfinite(hi)) break;
+    }
+    if (!(residual(hi, nullptr) >= 0)) {
+      s.message = "No bracket for the ring displacement: sum Q cos psi stays below F_r = " +
+                  Num(options.radial_load_n) + " N up to delta_r = " + Num(hi) + " m.";
+      s.termination = LoadDistributionTermination::kNoConvergence;
+      s.delta_r_m = half_pd;
+      return;
+    }
     delta = hi;  // the Stribeck-type start, from the side where R > 0 and the Jacobian is sound
     bool converged = false;
     for (int it = 1; it <= options.max_iterations; ++it) {

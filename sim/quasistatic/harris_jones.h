@@ -39,7 +39,7 @@ struct LoadDistributionOptions {
   double inner_ring_speed_rad_s = 0.0;   // outer ring fixed; only the centrifugal force uses it
   double roller_length_m = 9e-3;         // effective contact length l (no catalogue value; 9 mm)
   double diametral_clearance_m = 20e-6;  // P_d (total play); P_d / 2 gap per roller
-  double phase_rad = 0.0;                // psi_0: angle of roller 0 from the load line
+  double phase_rad = 0.0;                // psi_0: angle of roller 0 from the load line, |.| <= 2 pi
   double roller_density_kg_m3 = 7850.0;  // for the roller mass in F_c
   // Palmgren coefficient, N/mm^(10/9) per mm^(8/9) of length: K_c = coefficient * l_mm^(8/9).
   double palmgren_coefficient = 8.06e4;
@@ -88,8 +88,9 @@ struct LoadDistributionSummary {
 };
 
 // Solves the load distribution. Throws InputError (one line naming the option) when
-// options.IsValid() fails or the bearing geometry is not physical; non-convergence is reported
-// in the summary, never thrown.
+// options.IsValid() fails, the bearing geometry is not physical, the clearance is not below the
+// roller diameter or the roller is longer than 10 diameters; non-convergence (including a load
+// no finite displacement carries) is reported in the summary, never thrown. Every loop is bounded.
 void SolveLoadDistribution(const LoadDistributionOptions& options,
                            const BearingGeometry& bearing,
                            LoadDistributionSummary* summary);
@@ -98,6 +99,19 @@ void SolveLoadDistribution(const LoadDistributionOptions& options,
 // [1 - (1 - cos psi)/(2 epsilon)]^(10/9) cos psi d psi, the continuous-roller limit:
 // Q_max = F_r / (Z J_r). epsilon in (0, 1]; J_r(0.5) = 0.2448 (Stribeck's 1/J_r = 4.08).
 double RadialIntegral(double epsilon);
+
+// Hertz peak pressure of a line contact (Johnson, Contact Mechanics, 4.3), Pa:
+// p0 = sqrt(w E* / (pi R)) with w = Q / l, 1/R = 1/r1 + 1/r2 (r2 < 0 for a concave race) and the
+// contact modulus 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (steel on steel: 113 GPa).
+double HertzLinePressure(double load_n,
+                         double length_m,
+                         double r1_m,
+                         double r2_m,
+                         double contact_modulus_pa = 206e9 / (2.0 * (1.0 - 0.3 * 0.3)));
+
+// The stress ISO 76 takes for the static load rating C0 of roller bearings (Pa): above it the
+// races deform plastically and the elastic contact law no longer holds.
+constexpr double kStaticCapacityStressPa = 4.0e9;
 
 // K_c in SI (N/m^(10/9)) for a roller of effective length l.
 double PalmgrenContactStiffness(double roller_length_m, double coefficient = 8.06e4);

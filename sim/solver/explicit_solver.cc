@@ -21,31 +21,6 @@ namespace {
 constexpr int kNodeChunk = 1024;  // fixed node chunk: sums do not depend on the thread count
 constexpr int kRigidSums = 7;     // m, mx, my, mvx, mvy, m(x vy - y vx), m(x^2 + y^2)
 constexpr int kMinElementsPerThread = 10000;
-constexpr char kMagic[8] = {'S', 'P', 'K', 'C', 'K', 'P', 'T', '2'};  // 2: initial_stored
-
-template <typename T>
-void Put(std::ostream& out, const T& v) {
-  out.write(reinterpret_cast<const char*>(&v), sizeof v);
-}
-template <typename T>
-T Get(std::istream& in) {
-  T v{};
-  in.read(reinterpret_cast<char*>(&v), sizeof v);
-  if (!in) throw InputError("checkpoint: file is truncated");
-  return v;
-}
-void PutVec(std::ostream& out, const std::vector<double>& v) {
-  Put<std::uint64_t>(out, v.size());
-  out.write(reinterpret_cast<const char*>(v.data()),
-            static_cast<std::streamsize>(v.size() * sizeof(double)));
-}
-void GetVec(std::istream& in, std::vector<double>* v, const char* what) {
-  if (Get<std::uint64_t>(in) != v->size())
-    throw InputError(std::string("checkpoint: '") + what + "' has the wrong size");
-  in.read(reinterpret_cast<char*>(v->data()),
-          static_cast<std::streamsize>(v->size() * sizeof(double)));
-  if (!in) throw InputError("checkpoint: file is truncated");
-}
 
 }  // namespace
 
@@ -91,21 +66,6 @@ bool SolverOptions::IsValid(std::string* error) const {
   if (!(max_energy_error >= 0.0)) return fail("solver: max_energy_error must be >= 0");
   if (num_threads < 0) return fail("solver: num_threads must be >= 0");
   return true;
-}
-
-double Energies::BalanceError() const {
-  const double total = kinetic + internal + hourglass + contact + friction + damping;
-  const double err = std::abs(total - initial_kinetic - initial_stored - external);
-  const double scale = Scale();
-  return scale > 0.0 ? err / scale : 0.0;
-}
-
-double Energies::Scale() const {
-  double scale = initial_kinetic;
-  for (double v :
-       {kinetic, internal, hourglass, contact, friction, damping, external, initial_stored})
-    scale = std::max(scale, std::abs(v));
-  return scale;
 }
 
 std::string SolverSummary::BriefReport() const {
@@ -460,7 +420,7 @@ void ExplicitSolver::Step() {
     throw NumericalError(os.str());
   }
   if (options_.track_contributor_work) {
-    TrackedAddForces(dt);
+    ledger_.AddForces(state_, elements_, contributors_, time_, dt);
   } else {
     AddContributorForces(dt);
   }
@@ -498,7 +458,7 @@ void ExplicitSolver::Step() {
   const double dt_avg = k.dt_avg;
 
   ApplyConstraints(dt, dt_avg, time_ + 0.5 * dt, time_ + dt);
-  if (options_.track_contributor_work) BookTrackedWork(dt_avg);
+  if (options_.track_contributor_work) ledger_.BookWork(state_, dt_avg);
   time_ += dt;
   dt_prev_ = dt;
   dt_ = dt;
@@ -523,25 +483,29 @@ void ExplicitSolver::ApplyConstraints(double dt, double dt_avg, double t_half, d
     for (int id : body.nodes) mass += s.mass[id], fx += s.fx[id], fy += s.fy[id];
     const double ax = body.force_x ? body.force_x(time_) : 0.0;
     const double ay = body.force_y ? body.force_y(time_) : 0.0;
-    const double vx0 = st.vx, vy0 = st.vy, x0 = st.x, y0 = st.y;
-    if (body.x_motion) {
-      st.x = body.ref_x + body.x_motion(t_next);
-      st.vx = (st.x - x0) / dt;
-      st.reaction_x = mass * (st.vx - vx0) / dt_avg - fx - ax;
-    } else {
-      st.vx = vx0 + dt_avg * (fx + ax) / mass;
-      st.x = x0 + dt * st.vx;
-      st.reaction_x = 0.0;
-    }
-    if (body.y_motion) {
-      st.y = body.ref_y + body.y_motion(t_next);
-      st.vy = (st.y - y0) / dt;
-      st.reaction_y = mass * (st.vy - vy0) / dt_avg - fy - ay;
-    } else {
-      st.vy = vy0 + dt_avg * (fy + ay) / mass;
-      st.y = y0 + dt * st.vy;
-      st.reaction_y = 0.0;
-    }
+    const double vx0 = st.vx, vy0 = st.vy;
+    // One translation direction: prescribed (position, chord velocity, the reaction that moves
+    // the body so) or free (Newton on the nodal and applied forces).
+    auto translate = [&](const TimeFunction& motion,
+                         double ref,
+                         double force,
+                         double applied,
+                         double* x,
+                         double* v,
+                         double* reaction) {
+      const double x0 = *x, v0 = *v;
+      if (motion) {
+        *x = ref + motion(t_next);
+        *v = (*x - x0) / dt;
+        *reaction = mass * (*v - v0) / dt_avg - force - applied;
+      } else {
+        *v = v0 + dt_avg * (force + applied) / mass;
+        *x = x0 + dt * *v;
+        *reaction = 0.0;
+      }
+    };
+    translate(body.x_motion, body.ref_x, fx, ax, &st.x, &st.vx, &st.reaction_x);
+    translate(body.y_motion, body.ref_y, fy, ay, &st.y, &st.vy, &st.reaction_y);
     st.angle = body.angle ? body.angle(t_next) : 0.0;
     const double c = std::cos(st.angle), sn = std::sin(st.angle);
     double work = 0.0;
@@ -596,107 +560,8 @@ void ExplicitSolver::MaybeOutput(bool force) {
   if (callback_) callback_(*this);
 }
 
-void ExplicitSolver::TrackedAddForces(double dt) {
-  const size_t nn = state_.size();
-  const size_t n = 1 + contributors_.size();
-  const bool first = ledger_force_.size() != n;  // t = 0, or the first step after a resume
-  if (first) {
-    ledger_force_.assign(n, std::vector<double>(2 * nn, 0.0));
-    ledger_work_.assign(n, 0.0), ledger_edit_.assign(n, 0.0);
-    ledger_base_.assign(n, ContributorLedger{});
-    ledger_scratch_.assign(2 * nn, 0.0);
-    // Baselines: the accounts start here (stored energy at x^n; cumulative terms so far).
-    ledger_base_[0].stored = elements_.InternalEnergy() + elements_.HourglassEnergy();
-    ledger_base_[0].dissipated = elements_.DampingEnergy();
-    for (size_t c = 0; c < contributors_.size(); ++c) {
-      ledger_base_[1 + c].dissipated = contributors_[c]->DissipatedEnergy();
-      ledger_base_[1 + c].external = contributors_[c]->ExternalWork();
-    }
-  }
-  auto kinetic = [&] {
-    double k = 0.0;
-    for (size_t i = 0; i < nn; ++i)
-      k += 0.5 * state_.mass[i] * (state_.vx[i] * state_.vx[i] + state_.vy[i] * state_.vy[i]);
-    return k;
-  };
-  // The element forces are gathered into fx / fy before the contributors run (see Step()).
-  std::copy(state_.fx.begin(), state_.fx.end(), ledger_force_[0].begin());
-  std::copy(state_.fy.begin(), state_.fy.end(), ledger_force_[0].begin() + nn);
-  for (size_t c = 0; c < contributors_.size(); ++c) {
-    std::copy(state_.fx.begin(), state_.fx.end(), ledger_scratch_.begin());
-    std::copy(state_.fy.begin(), state_.fy.end(), ledger_scratch_.begin() + nn);
-    const double k0 = kinetic();
-    contributors_[c]->AddForces(state_, time_, dt);
-    ledger_edit_[1 + c] += kinetic() - k0;
-    if (first) ledger_base_[1 + c].stored = contributors_[c]->StoredEnergy();
-    std::vector<double>& f = ledger_force_[1 + c];
-    for (size_t i = 0; i < nn; ++i) {
-      f[i] = state_.fx[i] - ledger_scratch_[i];
-      f[nn + i] = state_.fy[i] - ledger_scratch_[nn + i];
-    }
-  }
-  ledger_vx_ = state_.vx, ledger_vy_ = state_.vy;  // v^(n-1/2) as the update sees it
-}
-
-void ExplicitSolver::BookTrackedWork(double dt_avg) {
-  const size_t nn = state_.size();
-  for (size_t c = 0; c < ledger_force_.size(); ++c) {
-    const std::vector<double>& f = ledger_force_[c];
-    double w = 0.0;
-    for (size_t i = 0; i < nn; ++i)
-      w += f[i] * (ledger_vx_[i] + state_.vx[i]) + f[nn + i] * (ledger_vy_[i] + state_.vy[i]);
-    ledger_work_[c] += 0.5 * dt_avg * w;
-  }
-}
-
 std::vector<ContributorLedger> ExplicitSolver::ContributorLedgers() const {
-  std::vector<ContributorLedger> out;
-  if (ledger_work_.empty()) return out;
-  auto account =
-      [&](size_t k, std::string name, double stored, double dissipated, double external) {
-        ContributorLedger l;
-        l.name = std::move(name);
-        l.work = ledger_work_[k], l.velocity_edit = ledger_edit_[k];
-        l.stored = stored, l.initial_stored = ledger_base_[k].stored;
-        l.dissipated = dissipated - ledger_base_[k].dissipated;
-        l.external = external - ledger_base_[k].external;
-        out.push_back(l);
-      };
-  account(0,
-          "elements",
-          elements_.InternalEnergy() + elements_.HourglassEnergy(),
-          elements_.DampingEnergy(),
-          0.0);
-  for (size_t c = 0; c < contributors_.size(); ++c) {
-    const ForceContributor* f = contributors_[c];
-    account(1 + c, f->Name(), f->StoredEnergy(), f->DissipatedEnergy(), f->ExternalWork());
-  }
-  return out;
-}
-
-std::string LedgerReport(std::vector<ContributorLedger> ledgers, int max_rows) {
-  std::stable_sort(ledgers.begin(), ledgers.end(), [](const auto& a, const auto& b) {
-    return std::abs(a.Created()) > std::abs(b.Created());
-  });
-  double total = 0.0;
-  for (const ContributorLedger& l : ledgers) total += l.Created();
-  std::ostringstream os;
-  os << "energy ledger (J; created = work + velocity edits + stored + dissipated - external), "
-     << "total created " << total;
-  char buf[256];
-  for (int i = 0; i < static_cast<int>(ledgers.size()) && i < max_rows; ++i) {
-    const ContributorLedger& l = ledgers[i];
-    std::snprintf(buf,
-                  sizeof buf,
-                  "\n  %-40s created %+10.3e  work %+10.3e  stored %10.3e  dissipated %10.3e",
-                  l.name.c_str(),
-                  l.Created(),
-                  l.work + l.velocity_edit,
-                  l.stored,
-                  l.dissipated);
-    os << buf;
-  }
-  return os.str();
+  return ledger_.Ledgers(elements_, contributors_);
 }
 
 Energies ExplicitSolver::energies() const {
@@ -751,79 +616,6 @@ SolverSummary ExplicitSolver::Run(double end_time) {
   if (sum.steps == 0) sum.min_time_step = 0.0;
   sum.energies = energies();
   return sum;
-}
-
-void ExplicitSolver::SaveCheckpoint(const std::string& path) const {
-  std::ostringstream out(std::ios::binary);
-  out.write(kMagic, sizeof kMagic);
-  Put<std::uint64_t>(out, state_.size());
-  Put<std::uint64_t>(out, elements_.num_elements());
-  Put<std::uint64_t>(out, rigid_bodies_.size());
-  Put<std::uint64_t>(out, contributors_.size());
-  Put(out, initialized_);
-  Put(out, time_), Put(out, dt_), Put(out, dt_prev_), Put(out, next_output_time_);
-  Put(out, step_), Put(out, last_output_step_);
-  Put(out, damping_work_), Put(out, reaction_work_), Put(out, load_work_),
-      Put(out, initial_kinetic_), Put(out, initial_stored_);
-  for (const auto* v : {&state_.x, &state_.y, &state_.vx, &state_.vy}) PutVec(out, *v);
-  elements_.Save(out);
-  for (const auto& st : rigid_states_) Put(out, st);
-  for (const ForceContributor* c : contributors_) {
-    const std::string name = c->Name(), blob = c->SaveState();
-    Put<std::uint64_t>(out, name.size());
-    out.write(name.data(), static_cast<std::streamsize>(name.size()));
-    Put<std::uint64_t>(out, blob.size());
-    out.write(blob.data(), static_cast<std::streamsize>(blob.size()));
-  }
-  WriteFileAtomically(path, out.str());
-}
-
-void ExplicitSolver::LoadCheckpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open checkpoint");
-  char magic[8];
-  in.read(magic, sizeof magic);
-  if (!in || !std::equal(magic, magic + 8, kMagic))
-    throw InputError(path + ": not a spallkit solver checkpoint");
-  try {
-    if (Get<std::uint64_t>(in) != state_.size() ||
-        Get<std::uint64_t>(in) != static_cast<std::uint64_t>(elements_.num_elements()) ||
-        Get<std::uint64_t>(in) != rigid_bodies_.size() ||
-        Get<std::uint64_t>(in) != contributors_.size())
-      throw InputError(
-          "checkpoint: model size (nodes, elements, rigid bodies or contributors) differs");
-    const bool was_initialized = Get<bool>(in);
-    if (!initialized_) {
-      // Set up scratch, damping constants and threads without calling the t = 0 output.
-      auto cb = std::move(callback_);
-      callback_ = nullptr;
-      Initialize();
-      callback_ = std::move(cb);
-    }
-    (void)was_initialized;
-    time_ = Get<double>(in), dt_ = Get<double>(in), dt_prev_ = Get<double>(in),
-    next_output_time_ = Get<double>(in);
-    step_ = Get<long>(in), last_output_step_ = Get<long>(in);
-    damping_work_ = Get<double>(in), reaction_work_ = Get<double>(in), load_work_ = Get<double>(in);
-    initial_kinetic_ = Get<double>(in), initial_stored_ = Get<double>(in);
-    GetVec(in, &state_.x, "x"), GetVec(in, &state_.y, "y"), GetVec(in, &state_.vx, "vx"),
-        GetVec(in, &state_.vy, "vy");
-    elements_.Load(in);
-    for (auto& st : rigid_states_) st = Get<RigidBodyState>(in);
-    for (ForceContributor* c : contributors_) {
-      std::string name(Get<std::uint64_t>(in), '\0');
-      in.read(name.data(), static_cast<std::streamsize>(name.size()));
-      std::string blob(Get<std::uint64_t>(in), '\0');
-      in.read(blob.data(), static_cast<std::streamsize>(blob.size()));
-      if (!in) throw InputError("checkpoint: file is truncated");
-      if (name != c->Name())
-        throw InputError("checkpoint: contributor '" + name + "' where '" + c->Name() +
-                         "' was expected");
-      c->LoadState(blob);
-    }
-  } catch (const InputError& e) {
-    throw InputError(path + ": " + e.what());
-  }
 }
 
 }  // namespace spallkit::sim::solver

@@ -24,12 +24,14 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sim/fe/mesh.h"
 #include "sim/fe/nodal_state.h"
 #include "sim/fe/quad_elements.h"
 #include "sim/fe/section.h"
+#include "sim/solver/energy_ledger.h"
 #include "sim/solver/force_contributor.h"
 
 namespace spallkit::sim::solver {
@@ -106,50 +108,6 @@ struct SolverOptions {
   bool IsValid(std::string* error) const;
 };
 
-// Energy terms (J), cumulative since t = 0, at the last completed step.
-struct Energies {
-  double kinetic = 0.0;  // at v^(n+1/2), including rigid-body extra masses
-  double initial_kinetic = 0.0;
-  // Contributors' stored energy at the first step: initial overlaps (e.g. a roller vertex that
-  // starts inside a race facet's sag) start with penalty energy, part of the initial energy.
-  double initial_stored = 0.0;
-  double internal = 0.0;  // elastic strain energy (elements)
-  double hourglass = 0.0;
-  double contact = 0.0;         // stored by contributors (penalty springs)
-  double friction = 0.0;        // dissipated by contributors
-  double damping = 0.0;         // mass + stiffness damping dissipation
-  double external = 0.0;        // applied loads + prescribed-motion (reaction) work
-  double external_loads = 0.0;  //   of which applied loads (rigid-body forces + contributors)
-  // |E_kin + E_int + E_hg + E_contact + E_fric + E_damp - E_kin(0) - E_contact(0) - W_ext| /
-  // Scale().
-  double BalanceError() const;
-  // The largest energy term's magnitude (initial kinetic included), J: BalanceError's scale.
-  double Scale() const;
-};
-
-// One contributor's (or the elements') energy account since the ledger started (t = 0, or the
-// first step after a resume from a checkpoint; the ledger itself is not checkpointed), J. `work` is
-// the work its forces did on the nodes, sum_n f^n . (v^(n-1/2) + v^(n+1/2)) dt_avg / 2 (the same
-// central-difference rule as the balance), `velocity_edit` the kinetic energy its direct edits of
-// velocities changed (projections, ties). Its own books say the energy went into `stored`, was
-// `dissipated` or came in as `external` work; what they do not explain is Created():
-//   Created = work + velocity_edit + (stored - initial_stored) + dissipated - external
-// (> 0: energy created; initial_stored: its stored energy when the ledger started; dissipated and
-// external are counted from then on too).
-// For the elements stored = internal + hourglass and dissipated = stiffness damping.
-struct ContributorLedger {
-  std::string name;
-  double work = 0.0, velocity_edit = 0.0;
-  double stored = 0.0, initial_stored = 0.0, dissipated = 0.0, external = 0.0;
-  double Created() const {
-    return work + velocity_edit + stored - initial_stored + dissipated - external;
-  }
-};
-
-// The ledgers sorted by |Created()|, largest first, as a table of at most max_rows rows plus the
-// total (one line each, J).
-std::string LedgerReport(std::vector<ContributorLedger> ledgers, int max_rows = 10);
-
 struct SolverSummary {
   long steps = 0;
   double time = 0.0;                                // s
@@ -208,8 +166,11 @@ class ExplicitSolver {
   void PartRigidMotion(int part, double* vx, double* vy, double* omega) const;
 
   // Binary checkpoint of the full state (nodes, elements, constraints, contributors, energies,
-  // output schedule), written atomically. Load into a solver built the same way (same mesh,
-  // sections, options, constraints, contributors); throws InputError on mismatch.
+  // output schedule; solver_checkpoint.cc), as bytes or written atomically to a file. Load into a
+  // solver built the same way (same mesh, sections, options, constraints, contributors); throws
+  // InputError on mismatch.
+  std::string SaveState() const;
+  void LoadState(std::string_view bytes);
   void SaveCheckpoint(const std::string& path) const;
   void LoadCheckpoint(const std::string& path);
 
@@ -255,17 +216,10 @@ class ExplicitSolver {
   double damping_work_ = 0.0, reaction_work_ = 0.0, load_work_ = 0.0, initial_kinetic_ = 0.0;
   double initial_stored_ = 0.0;  // Energies::initial_stored
 
-  // Work ledger (track_contributor_work): forces of the elements [0] and of each contributor
-  // [1 + c] at step n (x then y, 2 x nodes each), velocities after the contributors, scratch.
-  void TrackedAddForces(double dt);
   // Every contributor's forces, in contributor order; the leading ones that split their forces
   // (ForceContributor::SplitsForces: the contact pairs) compute them on all threads first.
   void AddContributorForces(double dt);
-  void BookTrackedWork(double dt_avg);
-  std::vector<std::vector<double>> ledger_force_;
-  std::vector<double> ledger_work_, ledger_edit_;
-  std::vector<ContributorLedger> ledger_base_;  // accounts when the ledger started
-  std::vector<double> ledger_vx_, ledger_vy_, ledger_scratch_;
+  WorkLedger ledger_;  // track_contributor_work only
 };
 
 }  // namespace spallkit::sim::solver

@@ -14,27 +14,6 @@
 namespace spallkit::sim::verify {
 namespace {
 
-void Add(std::vector<CaseResult>* out,
-         std::string name,
-         std::string quantity,
-         double reference,
-         double computed,
-         double tolerance,
-         std::string note,
-         bool absolute = false) {
-  CaseResult r;
-  r.name = std::move(name);
-  r.quantity = std::move(quantity);
-  r.reference = reference;
-  r.computed = computed;
-  r.error = absolute ? std::abs(computed - reference)
-                     : std::abs(computed - reference) / std::abs(reference);
-  r.tolerance = tolerance;
-  r.pass = std::isfinite(r.error) && r.error <= tolerance;
-  r.note = std::move(note);
-  out->push_back(std::move(r));
-}
-
 fe::Section Steel(fe::PlaneMode mode) {
   fe::Section s;
   s.mode = mode;
@@ -98,14 +77,14 @@ void PatchTest(std::vector<CaseResult>* out) {
         scale;
     if (d > worst) worst = d, worst_sxx = el.sxx(e);
   }
-  Add(out,
-      "patch: constant strain, distorted mesh",
-      "sigma_xx of the worst element (Pa)",
-      rxx,
-      worst_sxx,
-      1e-6,
-      "max over elements and components of |sigma - C:eps| / max|C:eps|; 20 distorted quads",
-      false);
+  AddCase(out,
+          "patch: constant strain, distorted mesh",
+          "sigma_xx of the worst element (Pa)",
+          rxx,
+          worst_sxx,
+          1e-6,
+          "max over elements and components of |sigma - C:eps| / max|C:eps|; 20 distorted quads",
+          false);
   out->back().error = worst;
   out->back().pass = worst <= 1e-6;
 }
@@ -140,16 +119,16 @@ void RigidRotation(std::vector<CaseResult>* out) {
     peak = std::max(peak, solver.elements().VonMises(e));
   const double revs = solver.time() * omega / (2 * kPi);
   std::ostringstream note;
-  note << "absolute: peak von Mises / E over " << revs << " prescribed revolutions, "
-       << solver.step() << " steps";
-  Add(out,
-      "rotation: prescribed rigid rotation, 100 revolutions",
-      "peak von Mises stress / E",
-      0.0,
-      peak / sec.material.youngs_modulus,
-      1e-12,
-      note.str(),
-      true);
+  note << "peak von Mises / E over " << revs << " prescribed revolutions, " << solver.step()
+       << " steps";
+  AddCase(out,
+          "rotation: prescribed rigid rotation, 100 revolutions",
+          "peak von Mises stress / E",
+          0.0,
+          peak / sec.material.youngs_modulus,
+          1e-12,
+          note.str(),
+          true);
 }
 
 // Free ring spinning at constant speed, relative mass damping removes the breathing transient:
@@ -200,20 +179,20 @@ void CentrifugalRing(std::vector<CaseResult>* out) {
   std::ostringstream note;
   note << "plane stress ring 40/50 mm, 96x4 quads, " << solver.time() * omega / (2 * kPi)
        << " revolutions, worst radial layer; omega " << omega << " rad/s at the end";
-  Add(out,
-      "rotation: free spinning ring, centrifugal hoop stress",
-      "layer-mean hoop stress (Pa)",
-      ref_worst,
-      comp_worst,
-      0.02,
-      note.str());
-  Add(out,
-      "rotation: relative mass damping keeps the spin",
-      "spin after 3 revolutions (rad/s)",
-      omega0,
-      omega,
-      0.005,
-      "angular velocity from the part's rigid motion; plain mass damping would brake it");
+  AddCase(out,
+          "rotation: free spinning ring, centrifugal hoop stress",
+          "layer-mean hoop stress (Pa)",
+          ref_worst,
+          comp_worst,
+          0.02,
+          note.str());
+  AddCase(out,
+          "rotation: relative mass damping keeps the spin",
+          "spin after 3 revolutions (rad/s)",
+          omega0,
+          omega,
+          0.005,
+          "angular velocity from the part's rigid motion; plain mass damping would brake it");
 }
 
 // First longitudinal mode of a free-free bar: c = 2 L f.
@@ -241,15 +220,15 @@ void WaveSpeed(std::vector<CaseResult>* out, fe::PlaneMode mode) {
   const auto z = ZeroCrossings(t, u, 0.1 * period);
   double c = 0.0;
   if (z.size() >= 2) c = 2 * length / (2 * (z.back() - z.front()) / (z.size() - 1));
-  Add(out,
-      strain ? "wave: P-wave speed, plane strain bar (uniaxial strain)"
-             : "wave: bar wave speed, plane stress",
-      "longitudinal wave speed (m/s)",
-      c_ref,
-      c,
-      0.01,
-      strain ? "sqrt((lambda+2mu)/rho); first free-free mode, 50 quads"
-             : "sqrt(E/rho); first free-free mode, 50 quads");
+  AddCase(out,
+          strain ? "wave: P-wave speed, plane strain bar (uniaxial strain)"
+                 : "wave: bar wave speed, plane stress",
+          "longitudinal wave speed (m/s)",
+          c_ref,
+          c,
+          0.01,
+          strain ? "sqrt((lambda+2mu)/rho); first free-free mode, 50 quads"
+                 : "sqrt(E/rho); first free-free mode, 50 quads");
 }
 
 // Cantilever first bending frequency vs Euler-Bernoulli; hourglass share; energy balance.
@@ -292,24 +271,25 @@ void Cantilever(std::vector<CaseResult>* out, const std::string& filter) {
   double f = 0.0;
   if (z.size() >= 2) f = 1.0 / (2 * (z.back() - z.front()) / (z.size() - 1));
   if (CaseSelected("cantilever: first bending frequency", filter))
-    Add(out,
-        "cantilever: first bending frequency",
-        "frequency (Hz)",
-        f_eb,
-        f,
-        0.02,
-        "plane stress, L/H = 20, 120x6 one-point quads, QM = 1; Euler-Bernoulli reference");
+    AddCase(out,
+            "cantilever: first bending frequency",
+            "frequency (Hz)",
+            f_eb,
+            f,
+            0.02,
+            "plane stress, L/H = 20, 120x6 one-point quads, QM = 1; Euler-Bernoulli reference");
   if (CaseSelected("cantilever: hourglass energy share", filter))
-    Add(out,
-        "cantilever: hourglass energy share",
-        "peak E_hg / peak E_int",
-        0.0,
-        peak_int > 0 ? peak_hg / peak_int : 1.0,
-        0.05,
-        "absolute; must stay below 5 %",
-        true);
+    AddCase(out,
+            "cantilever: hourglass energy share",
+            "peak E_hg / peak E_int",
+            0.0,
+            peak_int > 0 ? peak_hg / peak_int : 1.0,
+            0.05,
+            "absolute; must stay below 5 %",
+            true);
   if (CaseSelected("cantilever: energy balance", filter))
-    Add(out,
+    AddCase(
+        out,
         "cantilever: energy balance",
         "worst balance error",
         0.0,

@@ -5,8 +5,10 @@
 // contact_cases.cc.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace spallkit::sim::verify {
@@ -27,6 +29,29 @@ struct CaseResult {
 void AppendFeCases(std::vector<CaseResult>* results, const std::string& filter);
 // Appends the contact cases (hertz, friction, energy, ...).
 void AppendContactCases(std::vector<CaseResult>* results, const std::string& filter);
+
+// Appends the case comparing `computed` with `reference`: relative error, or absolute with
+// `absolute` (the note then says so); it passes when the error is finite and within tolerance.
+inline void AddCase(std::vector<CaseResult>* results,
+                    std::string name,
+                    std::string quantity,
+                    double reference,
+                    double computed,
+                    double tolerance,
+                    std::string note,
+                    bool absolute = false) {
+  CaseResult r;
+  r.name = std::move(name);
+  r.quantity = std::move(quantity);
+  r.reference = reference;
+  r.computed = computed;
+  r.error = absolute ? std::abs(computed - reference)
+                     : std::abs(computed - reference) / std::abs(reference);
+  r.tolerance = tolerance;
+  r.pass = std::isfinite(r.error) && r.error <= tolerance;
+  r.note = std::move(note) + (absolute ? " (absolute error)" : "");
+  results->push_back(std::move(r));
+}
 
 // True when a case called `name` is selected by `filter` (empty: every case).
 inline bool CaseSelected(std::string_view name, std::string_view filter) {

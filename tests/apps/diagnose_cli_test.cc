@@ -95,6 +95,32 @@ TEST(DiagnoseCli, BadInputIsOneLineAndExitCode2) {
   ExpectError("diagnose " + path + " --bearing X999 --rpm 1797", "unknown bearing");
   ExpectError("diagnose " + path + " --rpm 1797", "no bearing");
   ExpectError("frequencies --bearing 6205 --rpm 0", "--rpm must be > 0");
+  ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --threads 100000",
+              "--threads must be in 0..64");
+}
+
+TEST(DiagnoseCli, RecordsThatCannotBeAnalysedAreRefusedOrFlagged) {
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  std::vector<double> t(24000), zero(24000, 0.0), constant(24000, 1.5);
+  for (size_t i = 0; i < t.size(); ++i) t[i] = i / 12000.0;
+  spallkit::WriteCsvRecord(dir + "/spall_cli_zero.csv", {{"time_s", t}, {"accel_g", zero}});
+  spallkit::WriteCsvRecord(dir + "/spall_cli_const.csv", {{"time_s", t}, {"accel_g", constant}});
+  ExpectError("diagnose " + dir + "/spall_cli_zero.csv --bearing 6205 --rpm 1797", "constant");
+  ExpectError("diagnose " + dir + "/spall_cli_const.csv --bearing 6205 --rpm 1797", "constant");
+  // One 1e20 spike in a fault record: a report with finite statistics and a warning.
+  const std::string path = WriteSynthetic("spall_cli_spike.csv", 2.0, true);
+  spallkit::Record r = spallkit::ReadRecord(path);
+  r.samples[3000] = 1e20;
+  spallkit::WriteCsvRecord(dir + "/spall_cli_spike.csv", {{"time_s", t}, {"accel_g", r.samples}});
+  const Result text = RunSpall("diagnose " + dir + "/spall_cli_spike.csv --bearing 6205 --rpm 1797");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("WARNING (verdict not confident)"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("inf"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("nan"), std::string::npos) << text.out;
+  const Result json =
+      RunSpall("diagnose " + dir + "/spall_cli_spike.csv --bearing 6205 --rpm 1797 --json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  EXPECT_FALSE(nlohmann::json::parse(json.out)["confident"].get<bool>());
 }
 
 }  // namespace

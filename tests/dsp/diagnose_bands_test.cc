@@ -43,8 +43,8 @@ TEST(DiagnoseBands, FaultStopsTheSearchEarlyWithTheSameVerdict) {
   EXPECT_DOUBLE_EQ(staged.multiplicity, 4.0 * 95);
   EXPECT_DOUBLE_EQ(full.multiplicity, 4.0 * 95);
   EXPECT_TRUE(staged.searched_bands == 16 || staged.searched_bands == 95) << staged.searched_bands;
-  EXPECT_EQ(staged.verdict, "outer_race");
-  EXPECT_EQ(full.verdict, "outer_race");
+  EXPECT_EQ(staged.verdict, Verdict::kOuterRace);
+  EXPECT_EQ(full.verdict, Verdict::kOuterRace);
   ASSERT_NE(staged.Best(), nullptr);
   EXPECT_NEAR(staged.Best()->fundamental_hz / s.rate_hz, 1.0, 1e-3);
 }
@@ -68,8 +68,8 @@ TEST(DiagnoseBands, HealthyRecordsAt48kHzFalseAlarmRateWithinDesign) {
       s.noise_rms = 1.0;
       s.seed = 7000 + seed;
       const Diagnosis d = Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz, o);
-      if (d.verdict != "healthy") ++alarms;
-      if (d.verdict == "healthy") {
+      if (d.verdict != Verdict::kHealthy) ++alarms;
+      if (d.verdict == Verdict::kHealthy) {
         EXPECT_EQ(d.searched_bands, 64);
       }
       searched = d.candidate_bands;
@@ -81,7 +81,8 @@ TEST(DiagnoseBands, HealthyRecordsAt48kHzFalseAlarmRateWithinDesign) {
       t.mains_amplitude = 0.2;
       t.extra_line_hz = f.bpfo_hz;
       t.extra_line_amplitude = 0.3;
-      if (Diagnose(spallkit::testing::MakeFaultRecord(t), g, f.shaft_hz, o).verdict != "healthy")
+      if (Diagnose(spallkit::testing::MakeFaultRecord(t), g, f.shaft_hz, o).verdict !=
+          Verdict::kHealthy)
         ++alarms_lines;
     }
     EXPECT_EQ(searched, 64);

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "core/bearing.h"
-#include "dsp/diagnose.h"
 #include "core/record_io.h"
+#include "dsp/diagnose.h"
 #include "tests/measured_data.h"
 
 namespace spallkit::dsp {
@@ -33,10 +33,10 @@ const CwruRecord kRecords[] = {
 
 void ExpectVerdict(const Diagnosis& d, const std::string& expected) {
   if (expected == "!race") {
-    EXPECT_NE(d.verdict, "inner_race");
-    EXPECT_NE(d.verdict, "outer_race");
+    EXPECT_NE(d.verdict, Verdict::kInnerRace);
+    EXPECT_NE(d.verdict, Verdict::kOuterRace);
   } else {
-    EXPECT_EQ(d.verdict, expected);
+    EXPECT_EQ(std::string(VerdictName(d.verdict)), expected);
   }
 }
 
@@ -114,7 +114,7 @@ TEST(CwruRates, InnerRaceRateMatchesKinematics) {
   const Record r = Load(kRecords[0]);
   if (r.samples.empty()) GTEST_SKIP() << "measured data not found";
   const Diagnosis d = Diagnose(r, CatalogBearing("6205"), 1797 / 60.0);
-  ASSERT_EQ(d.verdict, "inner_race");
+  ASSERT_EQ(d.verdict, Verdict::kInnerRace);
   EXPECT_NEAR(d.Best()->fundamental_hz / (5.4152 * 1797 / 60.0), 1.0, 0.01);
   ASSERT_TRUE(d.measured_shaft_hz.has_value());
   EXPECT_NEAR(*d.measured_shaft_hz, 29.93, 0.05);  // manifest: 1x/2x/3x lines agree within 0.1 %

@@ -11,9 +11,9 @@
 #include <string>
 
 #include "core/bearing.h"
+#include "core/record_io.h"
 #include "dsp/diagnose.h"
 #include "dsp/explain.h"
-#include "core/record_io.h"
 #include "tests/dsp/diagnose_test_signals.h"
 
 namespace spallkit::dsp {
@@ -34,7 +34,7 @@ TEST(SampleRecord, RollerSpallIsRollingElementWithMeasuredRates) {
   const Record r = ReadRecord(path);
   const Diagnosis d = Diagnose(r, CatalogBearing("N205EM"), 1200 / 60.0);
   SCOPED_TRACE(d.BriefReport());
-  EXPECT_EQ(d.verdict, "rolling_element");
+  EXPECT_EQ(d.verdict, Verdict::kRollingElement);
   // scripts/make_sample_record.py: f_b = 2 BSF = 115.0849 Hz (zero-mean 0.8 % jitter), f_c =
   // 8.3117 Hz (the load-zone modulation rate).
   ASSERT_TRUE(d.measured_f_b_hz.has_value());
@@ -122,7 +122,7 @@ TEST_P(JointExplanationCases, VerdictAndRates) {
     SCOPED_TRACE(Name(c) + ", seed " + std::to_string(seed) + "\n" + d.BriefReport());
     switch (c.kind) {
       case Kind::kRoller:
-        EXPECT_EQ(d.verdict, "rolling_element");
+        EXPECT_EQ(d.verdict, Verdict::kRollingElement);
         ASSERT_TRUE(d.measured_f_b_hz.has_value());
         EXPECT_NEAR(*d.measured_f_b_hz / rate, 1.0, 3e-3);
         ASSERT_TRUE(d.measured_f_c_hz.has_value());
@@ -132,13 +132,13 @@ TEST_P(JointExplanationCases, VerdictAndRates) {
         EXPECT_FALSE(Find(d, FaultComponent::kOuterRace).detected);
         break;
       case Kind::kCage:
-        EXPECT_EQ(d.verdict, "cage");
+        EXPECT_EQ(d.verdict, Verdict::kCage);
         EXPECT_FALSE(d.measured_f_b_hz.has_value());
         ASSERT_TRUE(d.measured_f_c_hz.has_value());
         EXPECT_NEAR(*d.measured_f_c_hz / rate, 1.0, 0.01);
         break;
       case Kind::kOuter:
-        EXPECT_EQ(d.verdict, "outer_race");
+        EXPECT_EQ(d.verdict, Verdict::kOuterRace);
         EXPECT_NEAR(d.Best()->fundamental_hz / rate, 1.0, 1e-3);
         break;
     }
@@ -188,7 +188,7 @@ TEST(JointExplanation, NoiseStaysHealthyAtTheDesignRate) {
     Record r;
     r.samples = MakeFaultSignal(s);
     r.sample_rate_hz = s.fs_hz;
-    if (Diagnose(r, g, 20.0).verdict != "healthy") ++alarms;
+    if (Diagnose(r, g, 20.0).verdict != Verdict::kHealthy) ++alarms;
   }
   EXPECT_EQ(alarms, 0);  // design rate 1e-3 per record: P(any of 40) <= 4 %
 }

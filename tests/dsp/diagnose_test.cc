@@ -76,7 +76,7 @@ TEST_P(FaultRecovery, VerdictAndRateWithinOnePermille) {
   s.resonance_hz = 0.27 * c.fs;
   const Diagnosis d = Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz);
   SCOPED_TRACE(d.BriefReport());
-  EXPECT_EQ(d.verdict, ComponentName(c.component));
+  EXPECT_EQ(d.verdict, VerdictOf(c.component));
   const FamilyDetection& det = Find(d, c.component);
   EXPECT_TRUE(det.detected);
   EXPECT_NEAR(det.fundamental_hz / s.rate_hz, 1.0, 1e-3);
@@ -120,7 +120,7 @@ TEST(Diagnose, RollerSpallRingingOnlyBelowTheWideBandsIsFound) {
   s.damping_ratio = 0.08;  // rings ~2 ms of the 8.7 ms between impacts
   const Diagnosis d = Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz);
   SCOPED_TRACE(d.BriefReport());
-  EXPECT_EQ(d.verdict, "rolling_element");
+  EXPECT_EQ(d.verdict, Verdict::kRollingElement);
   EXPECT_LE(d.band.width_hz(), 835.0);
   EXPECT_LT(d.band.low_hz, 950.0);
   EXPECT_GT(d.band.high_hz, 950.0);
@@ -139,7 +139,7 @@ TEST(Diagnose, RecoversOuterRaceWithNominalSpeedThreePercentOff) {
   for (double off : {0.97, 1.03}) {
     const Diagnosis d = Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz * off);
     SCOPED_TRACE(d.BriefReport());
-    EXPECT_EQ(d.verdict, "outer_race");
+    EXPECT_EQ(d.verdict, Verdict::kOuterRace);
     ASSERT_TRUE(d.measured_shaft_hz.has_value());
     EXPECT_NEAR(*d.measured_shaft_hz, f.shaft_hz, 0.01);
   }
@@ -182,13 +182,15 @@ TEST(Diagnose, HealthyRecordsFalseAlarmRateWithinDesign) {
       s.duration_s = 1.0;
       s.noise_rms = 1.0;
       s.seed = 1000 + seed;
-      if (Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz, o).verdict != "healthy")
+      if (Diagnose(spallkit::testing::MakeFaultRecord(s), g, f.shaft_hz, o).verdict !=
+          Verdict::kHealthy)
         ++alarms;
       FaultSignalSpec t = Base(f.shaft_hz, 12000, 5000 + seed);
       t.duration_s = 1.0;
       t.extra_line_hz = f.bpfo_hz;
       t.extra_line_amplitude = 0.3;
-      if (Diagnose(spallkit::testing::MakeFaultRecord(t), g, f.shaft_hz, o).verdict != "healthy")
+      if (Diagnose(spallkit::testing::MakeFaultRecord(t), g, f.shaft_hz, o).verdict !=
+          Verdict::kHealthy)
         ++alarms_lines;
     }
     const double margin = 3.0 * std::sqrt(alpha * (1 - alpha) / kRecords);

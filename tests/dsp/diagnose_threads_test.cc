@@ -40,7 +40,7 @@ TEST(DiagnoseThreads, IdenticalForEveryThreadCount) {
     DiagnoseOptions o;
     o.threads = 1;
     const Diagnosis one = Diagnose(record, g, shaft_hz, o);
-    EXPECT_EQ(one.verdict, rate > 0 ? "outer_race" : "healthy");
+    EXPECT_EQ(one.verdict, rate > 0 ? Verdict::kOuterRace : Verdict::kHealthy);
     if (rate == 0.0) {
       EXPECT_EQ(one.searched_bands, one.candidate_bands);
     }

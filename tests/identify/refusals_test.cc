@@ -28,7 +28,7 @@ TEST(Refusals, OuterRaceFaultHasNoRollerCount) {
   s.rate_hz = ComputeFrequencies(CatalogBearing("N205EM"), 20.0).bpfo_hz;
   s.noise_rms = 0.2;
   const Identification id = IdentifyRecord(spallkit::testing::MakeFaultRecord(s), 1200, 10000);
-  EXPECT_EQ(id.diagnosis.verdict, "outer_race");
+  EXPECT_EQ(id.diagnosis.verdict, dsp::Verdict::kOuterRace);
   EXPECT_FALSE(id.roller_signature);
   ExpectNothingStated(id);
   EXPECT_NE(id.reasons.front().find("race fault"), std::string::npos);
@@ -39,7 +39,7 @@ TEST(Refusals, NoiseHasNoRollerSignature) {
   s.fs_hz = 20000;
   s.duration_s = 1.0;
   const Identification id = IdentifyRecord(spallkit::testing::MakeFaultRecord(s), 1200, 10000);
-  EXPECT_EQ(id.diagnosis.verdict, "healthy");
+  EXPECT_EQ(id.diagnosis.verdict, dsp::Verdict::kHealthy);
   ExpectNothingStated(id);
   EXPECT_NE(id.reasons.front().find("no roller signature"), std::string::npos);
 }

@@ -103,7 +103,7 @@ TEST(BearingMesh, PaperMeshHasValidElementsAndReportsQuality) {
 
 // Smallest element length of each part, L_e = A / longest side or diagonal (the explicit step is
 // L_e / c): the rollers' O-grid must not hold elements much smaller than the contact spacing
-// (the old layout's core-corner elements had 0.27 contact sizes and set the step), and the
+// (a straight-sided core's corner elements have 0.27 contact sizes and set the step), and the
 // adapter's seat corners must stay above the rollers.
 TEST(BearingMesh, MergedQualityReportFoldsTheRollersIntoOneLine) {
   const MeshQualityReport q =

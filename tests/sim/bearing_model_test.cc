@@ -93,7 +93,7 @@ TEST(BearingModelTest, SmoothRaceContactRollsAtThePapersFriction) {
   EXPECT_LT(summary.energy_balance_error, 1e-4);
   // Mean cage slip over the last half (SimulationSummary: the record after 2 ramp_s is empty).
   EXPECT_NEAR(summary.cage_slip_mean, 0.0, 0.03) << summary.BriefReport();
-  // The roller on the load line at the end: pure rolling spin (bearing-notes: omega_roller =
+  // The roller on the load line at the end: pure rolling spin (omega_roller =
   // -(d_m / D)(1 - gamma^2) omega_i / 2 = -309.3 rad/s at 1200 rpm).
   EXPECT_NEAR(sim.model().RollerMotion(0).omega, -309.3, 0.03 * 309.3);
 }
@@ -107,7 +107,7 @@ TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
   EXPECT_EQ(model.sensor_channels()[0].direction, 'y');
   EXPECT_EQ(model.sensor_channels()[1].direction, 'x');
   for (const SensorChannel& c : model.sensor_channels()) EXPECT_LT(c.distance_m, scene.mesh.size_m);
-  // Pure-rolling cage speed at 1200 rpm after the ramp: 52.224 rad/s (bearing-notes §2).
+  // Pure-rolling cage speed at 1200 rpm after the ramp: 52.224 rad/s (core/bearing.h).
   EXPECT_NEAR(model.TheoreticalCageSpeed(1.0), 52.224, 1e-3);
   EXPECT_NEAR(model.InnerRingSpeed(0.5 * scene.operation.ramp_s), 0.5 * 125.6637, 1e-3);
   EXPECT_NE(model.Describe().find("52 contact pairs"), std::string::npos) << model.Describe();
@@ -140,7 +140,7 @@ TEST(BearingModelTest, FullFeCageStaysCentredAtSpeed) {
 }
 
 // model.race_contact = "curved" against "faceted": the rims touch the raceways as
-// circles, so a turning roller no longer lifts its centre over each rim vertex. The faceted
+// circles, so a turning roller does not lift its centre over each rim vertex. The faceted
 // section's sensor signal is those bumps (their acceleration ~ 2 pi^4 r f_spin^2 whatever the
 // mesh); 1 mm mesh, mu 0.1, 1200 rpm, accel_y rms over 4-6 ms: curved 1450, faceted 12788 m/s^2
 // (hybrid model at 0.5 mm: 33). Both keep their energy books. ~25 s for the two runs.
@@ -248,11 +248,10 @@ TEST_F(StaticLoadTest, LoadDistributionOnTheSteelAdapterWithinTenPercentOfQmax) 
   }
 }
 
-// Issue #4's criterion: load-zone forces within 10 % of Harris-Jones, on the housing Harris-Jones
-// assumes (a rigid one: model.adapter = "rigid") and the smooth race contact (the default; the
-// curved one met it too, sessions 6-10). With
-// faceted contact the roller on the load line carried +31 to +51 % and the +-55.4 deg rollers
-// almost nothing (their approach is the size of the facets' sag). On the elastic steel adapter the
+// Load-zone forces within 10 % of Harris-Jones, on the housing Harris-Jones assumes (a rigid
+// one: model.adapter = "rigid"), with the smooth race contact (the default). With faceted
+// contact the roller on the load line carries +31 to +51 % and the +-55.4 deg rollers almost
+// nothing (their approach is the size of the facets' sag). On the elastic steel adapter the
 // +-55.4 deg rollers carry -28 % (the ring bends beyond the +-50 deg seat; docs/BEARING_MODEL.md).
 // Static, load ramped over 1 ms, forces averaged over 2-3 ms. ~15 s.
 TEST(HarrisJonesTest, FullFeLoadZoneWithinTenPercentOnARigidHousing) {

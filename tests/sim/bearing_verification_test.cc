@@ -1,5 +1,6 @@
 // Verification of the hybrid bearing model (sim/bearing/hybrid_rollers.h) against the analytic
-// references of bearing-notes §1 (Harris-Jones), §2 (kinematic frequencies) and §4 (spall drop):
+// references of docs/BEARING_MODEL.md (Harris-Jones, the geometric drop over a spall) and the
+// kinematic frequencies of core/bearing.h:
 //  - exact roller section properties;
 //  - static load distribution: with a (100x) stiff housing the model IS Harris-Jones' model
 //    (rigid rings, Palmgren contacts) and must match it to 2 %; with the real steel outer ring on
@@ -262,7 +263,7 @@ TEST(HybridVerificationTest, HalfLengthSpallKeepsRollingAtThePapersFriction) {
 // roller is unloaded at the load line, so its neighbours carry 5.9 kN and dent the raceway; the
 // rollers then roll over the sloped (kernel-averaged) raceway. The outer-race force must follow
 // the deformed raceway's normal (grad delta), else ~0.04 J leak out unaccounted while the dent
-// moves (the balance error was 18.7 % here before that fix) and healthy runs hide it.
+// moves (a balance error of ~19 % here) and healthy runs hide it.
 TEST(HybridVerificationTest, EnergyIsBalancedWithASpallAtThePapersFriction) {
   FeBearingModel model(LoadScene(SceneFile(), {"model.fidelity=hybrid", "mesh.size_mm=2.0"}));
   solver::ExplicitSolver& s = model.solver();
@@ -300,7 +301,7 @@ TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARa
   // rpm) on the outer race: "zero" is < 10 N, 0.3 % of the healthy peak. Each passage (the
   // contact line inside the spall's angle) must reach zero; within a passage the roller, released
   // by one race and pushed by the other, crosses the drop and strikes the leading corner (the
-  // multiple impulses of bearing-notes §5), so the force is not zero throughout.
+  // multiple impulses at the exit), so the force is not zero throughout.
   // Friction: mu 0.1 / 0.08 (EHL traction level). With the scene's mu 0.01 / 0.005 the rigid
   // roller can get stuck with its spall on a race in the load zone: the leading rim corner's
   // normal force has a 0.8 mm lever against the spin, friction only mu r = 0.03 mm, and the spin
@@ -476,9 +477,8 @@ double SesPeak(const dsp::EnvelopeSpectrum& ses,
 // mean spin relative to the cage (/rollers/spin, /cage/omega). A short run without the spall
 // shows that the impulses are the spall's (kurtosis ~3, a seventh of the rms).
 // The lines are measured here directly, not through diagnose's verdict: for N205EM f_b = 575.4 Hz
-// lies within 2 % of 14 f_c = 581.8 Hz, and the verdict logic (dsp/diagnose.*, engineer "logic")
-// currently names `cage` for this record although its rolling-element comb is significant; the
-// test prints what diagnose says.
+// lies within 2 % of 14 f_c = 581.8 Hz, so the verdict (dsp/diagnose.*) depends on the joint
+// explanation of the lines; the test prints what diagnose says.
 // Friction mu 0.1 / 0.08 (EHL traction level), as the other dynamic tests (see
 // DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARace for why not the scene's 0.01 / 0.005).
 TEST(HybridVerificationTest, SimulatedSignalCarriesRollerSpallAndCageRates) {

@@ -157,11 +157,10 @@ TEST(CurvedContactTest, ADentedNodeRollsThroughTheContactSmoothlyAndConservative
 // load, rolled and orbited through the contact and back (the dent sweeps through, the contact
 // crosses bore nodes). The nodal forces must change in proportion to the motion: the largest
 // force change per step over the largest nodal displacement that step stays below twice the
-// penalty stiffness, and the work over the closed path is zero. The blend of session 8 (weights
-// S * M, no ridge points) gave 71 k here and -1.4e-4 J: a slave arc crossing a bore node had both
-// its points at a master span end, its weight ~ 0 beside another arc's point near its own end, and
-// at the ridges beside the dent no arc point was in span, so the load fell to node contact with a
-// different force (docs/CONTACT.md, "Open defect (session 8)": the 0.25 mm bearing created 29 %).
+// penalty stiffness, and the work over the closed path is zero. Plain product weights S * M
+// without ridge points fail both: a slave arc crossing a bore node has both its points at a master
+// span end, its weight ~ 0 beside another arc's point near its own end, and at the ridges beside
+// the dent no arc point is in span, so the load falls to node contact with a different force.
 struct FinePath {
   double stiffness = 0, work = 0, peak = 0;
 };

@@ -40,7 +40,7 @@ TEST(QuadElements, LumpedMassIsRhoAtOverFour) {
 }
 
 TEST(QuadElements, StableStepUsesLongestSideOrDiagonal) {
-  // Flat trapezoid: area / longest diagonal would overestimate the step (fe-notes pitfall).
+  // Flat trapezoid: area / longest diagonal would overestimate the step (a known pitfall).
   const Mesh m = OneQuad(0, 0, 1, 0, 0.9, 0.1, 0.1, 0.1);
   Section sec;
   QuadElements el(m, {sec});
@@ -48,7 +48,7 @@ TEST(QuadElements, StableStepUsesLongestSideOrDiagonal) {
   const double area = 0.5 * (1.0 + 0.8) * 0.1;
   const double lmax = std::max(1.0, std::hypot(0.9, 0.1));  // bottom side vs diagonals
   EXPECT_NEAR(el.ComputeCornerForces(s, 0.0, 1), area / lmax / sec.WaveSpeed(), 1e-15);
-  // Square: L_e = h / sqrt(2) (table in fe-notes: 200 um -> 21 ns with TSSFAC 0.9, plane strain).
+  // Square: L_e = h / sqrt(2) (200 um -> 21 ns with TSSFAC 0.9, plane strain).
   const Mesh sq = OneQuad(0, 0, 200e-6, 0, 200e-6, 200e-6, 0, 200e-6);
   QuadElements el2(sq, {sec});
   NodalState s2 = StateOf(sq, el2);

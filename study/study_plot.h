@@ -1,0 +1,44 @@
+// Trend plots of a dataset folder (`spall plot study DIR --x KEY --y QUANTITY`): one line per
+// group of cases, a quantity of each case against a parameter or label.
+//
+// x: any parameter or numeric label of DIR/index.json ("defects.0.width_mm", "width_mm",
+// "speed_rpm", ...). y: a numeric label, or a quantity computed from each case file over the
+// time window [from_s, end]:
+//   accel_rms        RMS of /signals/accel_y (mean removed), m/s^2
+//   accel_z_rms      RMS of /signals/accel_z (mean removed), m/s^2
+//   accel_kurtosis   kurtosis of /signals/accel_y (3 for a Gaussian signal)
+//   cage_slip_rms    RMS of /cage/slip_ratio, in percent
+//   cage_force_rms   RMS over all rollers of /contact/roller_cage, N
+//   outer_force_max  largest roller-outer race force, N
+//   rms:/PATH        RMS of any dataset (mean kept)
+// Groups: the cases with equal values of the `group` keys (default: every other [grid] key);
+// cases of one group with equal x (random draws) are averaged into one point.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "study/record_plot.h"
+
+namespace spallkit::study {
+
+struct StudyPlotOptions {
+  std::string x, y;
+  std::vector<std::string> group;  // empty: every other grid parameter
+  bool group_set = false;          // true: use `group` as given, even empty (one line)
+  double from_s = 0;               // skip the start-up (speed and load ramps)
+  int width = 1600, height = 800;
+};
+
+// Names of the computed quantities (for messages and --help).
+std::vector<std::string> StudyQuantities();
+
+// Reads DIR/index.json and the case files (status ok only), plots to `png_path` and, when
+// csv_path is not empty, writes one row per point (group, x, y, cases averaged). Throws
+// InputError for a folder without an index, an unknown x or y, or no numeric point.
+PlottedSeries PlotStudy(const std::string& dir,
+                        const StudyPlotOptions& options,
+                        const std::string& png_path,
+                        const std::string& csv_path = "");
+
+}  // namespace spallkit::study
