@@ -177,7 +177,7 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
 }
 
 double LogGammaUpperTail(int m, double x) {
-  if (x <= 0.0) return 0.0;
+  if (!(x > 0.0)) return 0.0;  // also NaN: Q = 1 rather than an index from floor(NaN)
   // Q(m, x) = exp(-x) sum_{j<m} x^j / j! = exp(-x + l*) sum_j t_j with t_j = x^j / j! / (x^j* /
   // j*!) relative to the largest term j* = min(m - 1, floor(x)): the t_j follow from t_j* = 1 by
   // the ratios x / j (upwards) and j / x (downwards), all <= 1, so the sum needs no exp and
