@@ -78,6 +78,10 @@ std::optional<std::string> UnknownSubcommand(const CLI::App& app,
     const CLI::App* next = nullptr;
     for (const CLI::App* s : subs)
       if (s->get_name() == word) next = s;
+    // A command taking positionals besides subcommands ("plot FILE" and "plot study DIR").
+    const bool takes_positionals =
+        !cur->get_options([](const CLI::Option* o) { return o->get_positional(); }).empty();
+    if (!next && takes_positionals) return std::nullopt;
     if (!next)
       return "spall: error: unknown subcommand '" + OneLine(word, 80) + "'" +
              (path.empty() ? "" : " of '" + path + "'") + " (known: " + Names(subs) + ")";

@@ -72,7 +72,8 @@ spallkit::apps::Register reg(
           ->add_option("--y",
                        o->study.y,
                        "accel_rms, accel_z_rms, accel_kurtosis, cage_slip_rms, cage_force_rms, "
-                       "outer_force_max, rms:/PATH or a numeric label")
+                       "outer_force_max, defective_cage_force_rms, defective_rolling_percent, "
+                       "defective_slides_per_cage_rev, rms:/PATH or a numeric label")
           ->required();
       study->add_option(
           "--group", o->group, "Keys that make a line (default: the other grid keys)");

@@ -177,7 +177,7 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
 }
 
 double LogGammaUpperTail(int m, double x) {
-  if (x <= 0.0) return 0.0;
+  if (!(x > 0.0)) return 0.0;  // also NaN: Q = 1 rather than an index from floor(NaN)
   // Q(m, x) = exp(-x) sum_{j<m} x^j / j! = exp(-x + l*) sum_j t_j with t_j = x^j / j! / (x^j* /
   // j*!) relative to the largest term j* = min(m - 1, floor(x)): the t_j follow from t_j* = 1 by
   // the ratios x / j (upwards) and j / x (downwards), all <= 1, so the sum needs no exp and
@@ -527,8 +527,11 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
     ev.freq_hz = f;
     if (Excluded(f, best_s, &ev.exclusion)) {
       ev.excluded = true;
-      if (ev.exclusion != "range") {
-        const int i0 = static_cast<int>(std::floor(f / df));
+      const int i0 = static_cast<int>(std::floor(f / df));
+      // The other exclusions are tested before "range": a line past the spectrum's end may come
+      // back as "shaft" or "mains", so read only bins that exist.
+      if (ev.exclusion != "range" && i0 >= 0 &&
+          i0 + 1 < static_cast<int>(std::min(spectrum.power.size(), spectrum.z.size()))) {
         ev.power = std::max(spectrum.power[i0], spectrum.power[i0 + 1]);
         ev.z = std::max(spectrum.z[i0], spectrum.z[i0 + 1]);
       }

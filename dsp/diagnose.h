@@ -62,7 +62,10 @@ struct DiagnoseOptions {
   // of `spall diagnose --plot-dir`); Diagnosis::kurtogram is then that one. The bands, the
   // detections and the verdict do not change. Costs a second kurtogram (~10 ms at 48 kHz, 10 s).
   bool kurtogram_map = false;
-  int floor_window_bins = 401;   // running-median window of the SES floor
+  int floor_window_bins = 401;  // running-median window of the SES floor
+  // A family is claimed (detected) only if the record holds this many periods of its
+  // fundamental; otherwise its reason says "not claimed" (the cage on short records).
+  double min_periods = 20.0;
   double line_p_value = 1e-3;    // "individually significant" line
   double min_modulation = 0.12;  // ...and modulating >= this fraction of mean(SE)
   // Search the first_bands candidates of highest spectral kurtosis first, and the others only

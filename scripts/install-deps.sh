@@ -11,7 +11,7 @@ PACKAGES=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
-  python3-numpy python3-scipy
+  python3-numpy python3-scipy python3-h5py python3-pandas
 )
 
 missing=()

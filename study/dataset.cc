@@ -1,7 +1,10 @@
 #include "study/dataset.h"
 
+#include <signal.h>
+
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -135,14 +138,23 @@ IndexEntry RunCaseRecordingFailure(const Sweep& sweep,
   }
 }
 
-// Temporary files of killed runs ("case-00003.h5.tmp-1234"), by case file name.
+// Temporary files of killed runs ("case-00003.h5.tmp-1234"), by case file name. Other temporary
+// files (index, sweep copy, failure markers) are removed here when the process that wrote them
+// is gone: another process on the folder may be writing its own at this moment.
 std::set<std::string> StaleTemporaries(const std::string& out_dir) {
-  std::set<std::string> names;
+  std::set<std::string> case_files;
   for (const auto& e : fs::directory_iterator(out_dir)) {
     const std::string name = e.path().filename().string();
-    if (name.find(".h5.tmp-") != std::string::npos) names.insert(name);
+    const auto tmp = name.find(".tmp-");
+    if (tmp == std::string::npos) continue;
+    if (name.find(".h5.tmp-") != std::string::npos) {
+      case_files.insert(name);
+      continue;
+    }
+    const long pid = std::strtol(name.c_str() + tmp + 5, nullptr, 10);
+    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove(e.path());
   }
-  return names;
+  return case_files;
 }
 
 std::string CsvCell(const std::string& s) {

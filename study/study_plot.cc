@@ -12,6 +12,8 @@
 #include "core/error.h"
 #include "core/hdf5.h"
 #include "plot/plot.h"
+#include "sim/bearing/roller_sliding.h"
+#include "sim/bearing/scene.h"
 #include "study/sweep.h"
 
 namespace spallkit::study {
@@ -81,6 +83,67 @@ double ComputeQuantity(const std::string& file,
   return kind == Quantity::kRms ? std::sqrt(m2) : (m2 > 0 ? m4 / (m2 * m2) : 0.0);
 }
 
+// Quantities of the defective rollers (the rollers of the case's [[defects]], read from the
+// file's effective scene), averaged over them; NaN for a healthy case.
+struct DefectiveQuantity {
+  const char* name;
+  const char* label;
+};
+constexpr DefectiveQuantity kDefectiveQuantities[] = {
+    {"defective_cage_force_rms", "defective roller-cage force RMS (N)"},
+    {"defective_rolling_percent", "defective roller rolling time (%)"},
+    {"defective_slides_per_cage_rev", "defective roller sliding episodes per cage revolution"},
+};
+
+double ComputeDefectiveQuantity(const std::string& file, const std::string& name, double from_s) {
+  const h5::File f = h5::File::OpenReadOnly(file);
+  const std::optional<std::string> text = f.ReadStringAttribute("/", "scene");
+  if (!text) throw InputError("plot study: " + file + ": no scene attribute");
+  const sim::Scene scene = sim::ParseScene(*text, file);
+  std::vector<int> rollers;
+  for (const sim::Defect& d : scene.defects)
+    if (std::find(rollers.begin(), rollers.end(), d.roller) == rollers.end())
+      rollers.push_back(d.roller);
+  if (rollers.empty()) return NAN;
+  const std::vector<double> t = f.ReadDataset("/time");
+  size_t first = 0;
+  while (first < t.size() && t[first] < from_s) ++first;
+  if (first >= t.size()) throw InputError("plot study: " + file + ": no samples after --from-s");
+  auto column = [&](const char* dataset, int j) {
+    if (!f.IsDataset(dataset)) throw InputError("plot study: " + file + ": no " + dataset);
+    std::vector<size_t> dims;
+    const std::vector<double> data = f.ReadDataset(dataset, &dims);
+    const size_t cols = dims.size() == 2 ? dims[1] : 1;
+    if (dims.empty() || dims[0] != t.size() || j >= static_cast<int>(cols))
+      throw InputError("plot study: " + file + ": " + dataset + " does not match /time");
+    std::vector<double> c(t.size());
+    for (size_t i = 0; i < t.size(); ++i) c[i] = data[i * cols + j];
+    return c;
+  };
+  double sum = 0;
+  for (int j : rollers) {
+    if (name == "defective_cage_force_rms") {
+      const std::vector<double> force = column("/contact/roller_cage", j);
+      double m2 = 0;
+      for (size_t i = first; i < force.size(); ++i) m2 += force[i] * force[i];
+      sum += std::sqrt(m2 / static_cast<double>(force.size() - first));
+      continue;
+    }
+    sim::RollerSlidingOptions so;
+    so.from_s = from_s;
+    const sim::RollerSlidingSummary s = sim::MeasureRollerSliding(
+        t,
+        column("/rollers/spin", j),
+        f.ReadDataset("/cage/omega"),
+        sim::PureRollingRelativeSpin(scene.geometry.bearing,
+                                     scene.operation.inner_ring_speed_rad_s),
+        so);
+    sum +=
+        name == "defective_rolling_percent" ? 100.0 * s.rolling_fraction : s.episodes_per_cage_rev;
+  }
+  return sum / static_cast<double>(rollers.size());
+}
+
 // A parameter or label of a case as a number (NaN when absent or not numeric).
 const nlohmann::json* Field(const nlohmann::json& c, const std::string& key) {
   for (const char* part : {"parameters", "labels"})
@@ -100,6 +163,7 @@ std::string Describe(const nlohmann::json* v) {
 std::vector<std::string> StudyQuantities() {
   std::vector<std::string> names;
   for (const Quantity& q : kQuantities) names.push_back(q.name);
+  for (const DefectiveQuantity& q : kDefectiveQuantities) names.push_back(q.name);
   names.push_back("rms:/PATH");
   return names;
 }
@@ -122,6 +186,9 @@ PlottedSeries PlotStudy(const std::string& dir,
   const Quantity* quantity = nullptr;
   for (const Quantity& q : kQuantities)
     if (o.y == q.name) quantity = &q;
+  const DefectiveQuantity* defective = nullptr;
+  for (const DefectiveQuantity& q : kDefectiveQuantities)
+    if (o.y == q.name) defective = &q;
   const bool rms_path = o.y.rfind("rms:", 0) == 0;
   std::vector<std::string> group = o.group;
   if (!o.group_set) {
@@ -143,6 +210,9 @@ PlottedSeries PlotStudy(const std::string& dir,
     if (quantity) {
       y = quantity->scale *
           ComputeQuantity(file, quantity->dataset, quantity->kind, true, o.from_s);
+    } else if (defective) {
+      y_seen = true;
+      y = ComputeDefectiveQuantity(file, o.y, o.from_s);
     } else if (rms_path) {
       y = ComputeQuantity(file, o.y.substr(4), Quantity::kRms, false, o.from_s);
     } else if (const nlohmann::json* yv = Field(c, o.y)) {
@@ -167,13 +237,14 @@ PlottedSeries PlotStudy(const std::string& dir,
     throw InputError("plot study: --y " + o.y +
                      ": not a label of the index nor one of accel_rms, "
                      "accel_z_rms, accel_kurtosis, cage_slip_rms, cage_force_rms, "
-                     "outer_force_max, rms:/PATH");
+                     "outer_force_max, defective_cage_force_rms, defective_rolling_percent, "
+                     "defective_slides_per_cage_rev, rms:/PATH");
   if (points.empty()) throw InputError("plot study: " + dir + ": no finished case with numbers");
 
   plot::LinePlot p;
   p.width = o.width;
   p.height = o.height;
-  const std::string y_label = quantity ? quantity->label : o.y;
+  const std::string y_label = quantity ? quantity->label : defective ? defective->label : o.y;
   p.title = y_label + " against " + o.x + " (" + fs::path(dir).filename().string() + ")";
   p.x_label = o.x;
   p.y_label = y_label;

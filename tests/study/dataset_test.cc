@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -105,6 +106,8 @@ TEST(DatasetTest, KilledHalfwayThenResumedEndsWithEveryCaseOnce) {
   const int before = CountCaseFiles(out);
   ASSERT_GE(before, 6);
   ASSERT_LT(before, 12);
+  // What a kill during an index rewrite leaves (the killed process's pid is free now).
+  std::ofstream(out + "/index.json.tmp-" + std::to_string(pid)) << "{";
 
   const auto r = testing::RunSpall("dataset run " + sweep + " --out " + out + " --workers 2");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -171,6 +174,71 @@ TEST(DatasetTest, MpiRanksGiveTheSameFilesAsOneWorker) {
   for (int i = 0; i < 6; ++i)
     ExpectSameCaseFile(dir + "/one/" + CaseId(i) + ".h5", dir + "/mpi/" + CaseId(i) + ".h5");
   EXPECT_EQ(ReadLines(dir + "/mpi/index.csv").size(), 7u);
+  fs::remove_all(dir);
+}
+
+TEST(DatasetTest, AFailingCaseIsRecordedAndSkippedUntilRetried) {
+  const std::string dir = Scratch("fail");
+  // Case 1 aborts on its energy check (a threshold no run meets); case 0 runs.
+  std::ofstream(dir + "/fail.toml")
+      << "[base]\nscene = \"" SPALLKIT_SOURCE_DIR
+         "/datasets/scenes/paper-verification.toml\"\n"
+         "[base.set]\n\"model.fidelity\" = \"hybrid\"\n"
+         "\"mesh.size_mm\" = 2.0\n\"run.duration_s\" = 0.002\n"
+         "[grid]\n\"solver.max_energy_error_percent\" = [5.0, 1e-12]\n";
+  const std::string run = "dataset run " + dir + "/fail.toml --out " + dir + "/out";
+  const auto first = testing::RunSpall(run);
+  EXPECT_EQ(first.code, 1) << first.err;
+  EXPECT_NE(first.out.find("1 run now, 1 failed"), std::string::npos) << first.out;
+  EXPECT_TRUE(fs::exists(dir + "/out/case-00001.failed"));
+  EXPECT_FALSE(fs::exists(dir + "/out/case-00001.h5"));
+  const std::vector<std::string> lines = ReadLines(dir + "/out/index.csv");
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_NE(lines[1].find(",ok,"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[2].find(",failed,"), std::string::npos) << lines[2];
+  EXPECT_NE(lines[2].find("energy"), std::string::npos) << lines[2];
+  // Not retried by default; retried on request (and fails again: the same scene).
+  const auto again = testing::RunSpall(run);
+  EXPECT_NE(again.out.find("1 already done, 0 run now, 0 failed"), std::string::npos) << again.out;
+  const auto retry = testing::RunSpall(run + " --retry-failed");
+  EXPECT_NE(retry.out.find("0 run now, 1 failed"), std::string::npos) << retry.out;
+  fs::remove_all(dir);
+}
+
+TEST(DatasetTest, NoiseIsAddedAtTheAskedSnrAndEquallyToDuplicatedChannels) {
+  const std::string dir = Scratch("noise");
+  auto write = [&](const std::string& name, const std::string& post) {
+    std::ofstream(dir + "/" + name) << "[base]\nscene = \"" SPALLKIT_SOURCE_DIR
+                                       "/datasets/scenes/paper-verification.toml\"\n"
+                                       "[base.set]\n\"model.fidelity\" = \"hybrid\"\n"
+                                       "\"mesh.size_mm\" = 2.0\n\"run.duration_s\" = 0.01\n"
+                                    << post;
+    return LoadSweep(dir + "/" + name);
+  };
+  DatasetOptions options;
+  options.out_dir = dir + "/clean";
+  RunDataset(write("clean.toml", ""), options);
+  options.out_dir = dir + "/noisy";
+  RunDataset(write("noisy.toml", "[post]\nnoise_snr_db = 20.0\n"), options);
+  const h5::File clean = h5::File::OpenReadOnly(dir + "/clean/case-00000.h5");
+  const h5::File noisy = h5::File::OpenReadOnly(dir + "/noisy/case-00000.h5");
+  const std::vector<double> x = clean.ReadDataset("/signals/accel_y");
+  const std::vector<double> y = noisy.ReadDataset("/signals/accel_y");
+  ASSERT_EQ(x.size(), y.size());
+  double mean = 0;
+  for (double v : x) mean += v / x.size();
+  double signal = 0, noise = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    signal += (x[i] - mean) * (x[i] - mean);
+    noise += (y[i] - x[i]) * (y[i] - x[i]);
+  }
+  // 201 samples: the noise power's estimate has a relative spread of 1/sqrt(100) = 10 %.
+  EXPECT_NEAR(10 * std::log10(signal / noise), 20.0, 1.5);
+  // accel_y is the top sensor's y channel: the same noise on both.
+  EXPECT_TRUE(noisy.ReadDataset("/signals/top_y") == y);
+  EXPECT_EQ(noisy.ReadDoubleAttribute("/signals/accel_y", "noise_snr_db"), 20.0);
+  EXPECT_EQ(noisy.ReadDoubleAttribute("/signals/accel_y", "sample_rate_hz"), 20000.0);
+  EXPECT_EQ(noisy.ReadDoubleAttribute("/", "noise_snr_db"), 20.0);  // a label too
   fs::remove_all(dir);
 }
 
