@@ -334,8 +334,11 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
     ev.freq_hz = f;
     if (Excluded(f, best_s, &ev.exclusion)) {
       ev.excluded = true;
-      if (ev.exclusion != "range") {
-        const int i0 = static_cast<int>(std::floor(f / df));
+      const int i0 = static_cast<int>(std::floor(f / df));
+      // The other exclusions are tested before "range": a line past the spectrum's end may come
+      // back as "shaft" or "mains", so read only bins that exist.
+      if (ev.exclusion != "range" && i0 >= 0 &&
+          i0 + 1 < static_cast<int>(std::min(spectrum.power.size(), spectrum.z.size()))) {
         ev.power = std::max(spectrum.power[i0], spectrum.power[i0 + 1]);
         ev.z = std::max(spectrum.z[i0], spectrum.z[i0 + 1]);
       }
