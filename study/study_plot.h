@@ -11,8 +11,9 @@
 //   cage_force_rms   RMS over all rollers of /contact/roller_cage, N
 //   outer_force_max  largest roller-outer race force, N
 //   defective_cage_force_rms       RMS of /contact/roller_cage of the defective rollers, N
-//   defective_rolling_percent      time the defective rollers roll, % (sim/bearing/roller_sliding.h)
-//   defective_slides_per_cage_rev  their sliding episodes per cage revolution
+//   defective_rolling_percent      time the defective rollers roll, %
+//   (sim/bearing/roller_sliding.h) defective_slides_per_cage_rev  their sliding episodes per cage
+//   revolution
 //     (the defective rollers are the case's [[defects]] rollers, averaged; healthy cases have none)
 //   rms:/PATH        RMS of any dataset (mean kept)
 // Groups: the cases with equal values of the `group` keys (default: every other [grid] key);
