@@ -25,7 +25,7 @@ void BM_HybridSimulatedMs(benchmark::State& bs) {
                  "operation.speed_rpm=6000",
                  "operation.ramp_s=0.0005",
                  "solver.threads=1"});
-  BearingModel model(scene);
+  FeBearingModel model(scene);
   spallkit::sim::solver::ExplicitSolver& s = model.solver();
   s.Run(0.001);  // past the ramp
   constexpr double kChunk = 1e-4;

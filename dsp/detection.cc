@@ -45,205 +45,12 @@ bool DetectionOptions::IsValid(std::string* error) const {
   return true;
 }
 
-double NormalizedSpectrum::BinTail(double z_value) const {
-  if (z_value <= 0.0) return 1.0;
-  // Lomax: E[exp(-t mu_hat / mu)] with mu_hat / mu ~ Gamma(n, 1/n).
-  return std::exp(-effective_samples * std::log1p(z_value / effective_samples));
-}
-
-double NormalizedSpectrum::PairPValue(double z_value) const {
-  const double q = BinTail(z_value);
-  // 1 - (1 - q)^2 without cancellation for small q.
-  return q * (2.0 - q);
-}
-
-namespace {
-
-// Splits src[0, len) into lo (values < pivot) and hi (the rest, NaN included), keeping the
-// order; returns how many went to lo. lo and hi need room for len + 8 values (the vector path
-// stores whole vectors). Branch-free: on a noise spectrum every comparison is a coin flip that a
-// branch predictor loses, which is where std::nth_element spends its time.
-int Partition(const double* src, int len, double pivot, double* lo, double* hi) {
-  int nlo = 0, nhi = 0, i = 0;
-#if defined(__AVX512F__)
-  const __m512d pv = _mm512_set1_pd(pivot);
-  for (; i + 8 <= len; i += 8) {
-    const __m512d v = _mm512_loadu_pd(src + i);
-    const __mmask8 less = _mm512_cmp_pd_mask(v, pv, _CMP_LT_OQ);
-    // Compress into a register and store the whole vector (compress-to-memory is microcoded
-    // and slow on some cores); the lanes past the count are overwritten by the next store.
-    _mm512_storeu_pd(lo + nlo, _mm512_maskz_compress_pd(less, v));
-    _mm512_storeu_pd(hi + nhi, _mm512_maskz_compress_pd(static_cast<__mmask8>(~less), v));
-    const int count = __builtin_popcount(less);
-    nlo += count;
-    nhi += 8 - count;
-  }
-#endif
-  for (; i < len; ++i) {
-    const double v = src[i];
-    lo[nlo] = v;
-    hi[nhi] = v;
-    const bool less = v < pivot;
-    nlo += less;
-    nhi += !less;
-  }
-  return nlo;
-}
-
-// k-th smallest (0-based) of data[0, n): the value std::nth_element returns (an order statistic
-// is unique as a value), by quickselect with median-of-3 pivots over the branch-free partition
-// above, ping-ponging between three scratch buffers of n + 8 values each; data is not modified.
-double SelectKth(const double* data, int n, int k, double* scratch) {
-  const int cap = n + 8;
-  double* bufs[3] = {scratch, scratch + cap, scratch + 2 * cap};
-  const double* src = data;
-  int cur = -1;  // which buffer src is (-1: data)
-  int len = n;
-  for (int round = 0; len > 16 && round < 64; ++round) {
-    const double x = src[0], y = src[len / 2], z = src[len - 1];
-    const double pivot = std::max(std::min(x, y), std::min(std::max(x, y), z));
-    double* lo = bufs[cur == 0 ? 1 : 0];
-    double* hi = bufs[cur == 2 ? 1 : 2];
-    const int nlo = Partition(src, len, pivot, lo, hi);
-    if (k < nlo) {
-      src = lo;
-      len = nlo;
-    } else if (nlo > 0) {
-      src = hi;
-      len -= nlo;
-      k -= nlo;
-    } else {
-      break;  // nothing below the pivot (ties at the minimum): finish below
-    }
-    cur = src == bufs[0] ? 0 : (src == bufs[1] ? 1 : 2);
-  }
-  double* work = cur >= 0 ? bufs[cur] : bufs[0];
-  if (cur < 0) std::copy(src, src + len, work);
-  std::nth_element(work, work + k, work + len);
-  return work[k];
-}
-
-}  // namespace
-
 NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
                                      double resolution_hz,
                                      const DetectionOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw InputError("detection: " + error);
-  if (!(resolution_hz > 0.0)) throw InputError("detection: resolution must be > 0 Hz");
-  const int n = static_cast<int>(power.size());
-  const int w = options.floor_window_bins;
-  if (n < w + 1)
-    throw InputError("detection: spectrum has " + std::to_string(n) + " bins, need more than " +
-                     std::to_string(w) + " for the noise floor (record too short)");
-  NormalizedSpectrum out;
-  out.power.assign(power.begin(), power.end());
-  out.resolution_hz = resolution_hz;
-  out.effective_samples = w * std::numbers::ln2 * std::numbers::ln2;
-  out.floor.assign(n, 0.0);
-  out.z.assign(n, 0.0);
-
-  // Median of the window [start, start + w) around anchor bins spaced `step` apart.
-  const int step = std::max(1, w / 6);
-  std::vector<int> anchors;
-  for (int i = 1; i < n; i += step) anchors.push_back(i);
-  if (anchors.back() != n - 1) anchors.push_back(n - 1);
-  std::vector<double> anchor_floor(anchors.size());
-  std::vector<double> scratch(3 * (w + 8));
-  for (size_t a = 0; a < anchors.size(); ++a) {
-    int start = anchors[a] - w / 2;
-    start = std::clamp(start, 1, n - w);
-    anchor_floor[a] = SelectKth(power.data() + start, w, w / 2, scratch.data()) / std::numbers::ln2;
-  }
-  // Linear interpolation between anchors, segment by segment (loops that vectorise; the same
-  // arithmetic as a bin-by-bin walk). Bins up to the first anchor take its value.
-  const double tiny = std::numeric_limits<double>::min();
-  double* fl = out.floor.data();
-  double* z = out.z.data();
-  for (int i = 1; i <= anchors[0] && i < n; ++i) fl[i] = std::max(anchor_floor[0], tiny);
-  for (size_t a = 0; a + 1 < anchors.size(); ++a) {
-    const int i0 = anchors[a], i1 = anchors[a + 1];
-    const double f0 = anchor_floor[a], f1 = anchor_floor[a + 1];
-    const double span = double(i1 - i0);
-    for (int i = i0 + 1; i <= i1; ++i) {
-      const double t = double(i - i0) / span;
-      fl[i] = std::max((1.0 - t) * f0 + t * f1, tiny);
-    }
-  }
-  for (int i = 1; i < n; ++i) z[i] = power[i] / fl[i];
-  out.floor[0] = out.floor.size() > 1 ? out.floor[1] : 1.0;
-  out.z[0] = 0.0;
-  return out;
-}
-
-double LogGammaUpperTail(int m, double x) {
-  if (!(x > 0.0)) return 0.0;  // also NaN: Q = 1 rather than an index from floor(NaN)
-  // Q(m, x) = exp(-x) sum_{j<m} x^j / j! = exp(-x + l*) sum_j t_j with t_j = x^j / j! / (x^j* /
-  // j*!) relative to the largest term j* = min(m - 1, floor(x)): the t_j follow from t_j* = 1 by
-  // the ratios x / j (upwards) and j / x (downwards), all <= 1, so the sum needs no exp and
-  // cannot overflow; l* = j* ln x - ln j*! is the only transcendental work besides ln of the sum.
-  constexpr int kTable = 256;
-  static const std::array<double, kTable> log_factorial = [] {
-    std::array<double, kTable> t{};
-    for (int j = 1; j < kTable; ++j) t[j] = t[j - 1] + std::log(double(j));
-    return t;
-  }();
-  const int top = static_cast<int>(std::min<double>(m - 1, std::floor(x)));
-  double log_top_factorial;
-  if (top < kTable) {
-    log_top_factorial = log_factorial[top];
-  } else {
-    log_top_factorial = log_factorial[kTable - 1];
-    for (int j = kTable; j <= top; ++j) log_top_factorial += std::log(double(j));
-  }
-  const double log_max = top * std::log(x) - log_top_factorial;
-  double sum = 1.0;
-  double t = 1.0;
-  for (int j = top; j > 0 && t > 1e-18; --j) {  // t_{j-1} = t_j j / x
-    t *= j / x;
-    sum += t;
-  }
-  t = 1.0;
-  for (int j = top + 1; j < m && t > 1e-18; ++j) {  // t_j = t_{j-1} x / j
-    t *= x / j;
-    sum += t;
-  }
-  return std::min(0.0, -x + log_max + std::log(sum));
-}
-
-double GammaThreshold(int m, double alpha_over_mult) {
-  const double target = std::log(alpha_over_mult);
-  if (target >= 0.0) return 0.0;
-  double hi = 10.0;
-  while (LogGammaUpperTail(m, hi) > target) hi *= 2.0;
-  // Newton on g(x) = ln Q(m, x) - target from hi (g(hi) <= 0). ln Q is concave and decreasing in
-  // x (the Gamma(m >= 1) survival function is log-concave), so from the right every tangent step
-  // stays right of the root and the iterates fall monotonically onto it: ~5 evaluations instead
-  // of ~60 for bisection, to the same few-ulp accuracy.
-  // d/dx ln Q = -x^(m-1) e^-x / ((m-1)! Q).
-  double log_factorial = 0.0;  // ln (m-1)!
-  for (int j = 2; j < m; ++j) log_factorial += std::log(double(j));
-  double x = hi;
-  double g = LogGammaUpperTail(m, x) - target;  // <= 0
-  for (int it = 0; it < 100; ++it) {
-    const double slope =
-        -std::exp((m - 1) * std::log(x) - x - log_factorial - LogGammaUpperTail(m, x));
-    if (!(slope < 0.0)) break;
-    const double next = x - g / slope;
-    if (!(next < x) || x - next <= 1e-15 * x) break;
-    double y = next;
-    double g_next = LogGammaUpperTail(m, y) - target;
-    // The last step can land a few ulps left of the root (rounding); the threshold must satisfy
-    // Q <= alpha, so step right to the first double that does.
-    for (int k = 0; g_next > 0.0 && k < 64; ++k) {
-      y = std::nextafter(y, x);
-      g_next = LogGammaUpperTail(m, y) - target;
-    }
-    if (g_next > 0.0) break;
-    x = y;
-    g = g_next;
-  }
-  return x;
+  return NormalizeSpectrumWindow(power, resolution_hz, options.floor_window_bins);
 }
 
 bool FamilyDetection::family_evidence() const {
@@ -527,8 +334,11 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
     ev.freq_hz = f;
     if (Excluded(f, best_s, &ev.exclusion)) {
       ev.excluded = true;
-      if (ev.exclusion != "range") {
-        const int i0 = static_cast<int>(std::floor(f / df));
+      const int i0 = static_cast<int>(std::floor(f / df));
+      // The other exclusions are tested before "range": a line past the spectrum's end may come
+      // back as "shaft" or "mains", so read only bins that exist.
+      if (ev.exclusion != "range" && i0 >= 0 &&
+          i0 + 1 < static_cast<int>(std::min(spectrum.power.size(), spectrum.z.size()))) {
         ev.power = std::max(spectrum.power[i0], spectrum.power[i0 + 1]);
         ev.z = std::max(spectrum.z[i0], spectrum.z[i0 + 1]);
       }

@@ -51,6 +51,7 @@ void AddNoise(const Sweep& sweep, const SweepCase& c, h5::File* file) {
 void AddDiagnosis(const sim::Scene& scene, h5::File* file, nlohmann::ordered_json* labels) {
   std::string verdict = "not_diagnosed";
   double f_b = std::numeric_limits<double>::quiet_NaN();
+  std::string note;
   if (file->IsDataset("/signals/accel_y")) {
     Record record;
     record.samples = file->ReadDataset("/signals/accel_y");
@@ -66,12 +67,13 @@ void AddDiagnosis(const sim::Scene& scene, h5::File* file, nlohmann::ordered_jso
                                              options);
       verdict = dsp::VerdictName(d.verdict);
       if (d.measured_f_b_hz) f_b = *d.measured_f_b_hz;
-    } catch (const InputError&) {
-      // Too short or otherwise not diagnosable: the label says so.
+    } catch (const InputError& e) {
+      note = e.what();  // too short or otherwise not diagnosable: the labels say so and why
     }
   }
   (*labels)["verdict"] = verdict;
   (*labels)["diagnosed_f_b_hz"] = f_b;
+  (*labels)["diagnose_note"] = note;
 }
 
 }  // namespace

@@ -15,7 +15,8 @@ namespace spallkit::study {
 // datasets get a `noise_snr_db` attribute. With sweep.post.diagnose, runs dsp::Diagnose on
 // /signals/accel_y (one thread, the scene's bearing and speed) and adds the labels `verdict`
 // ("not_diagnosed" when the record is too short or the diagnosis refuses it) and
-// `diagnosed_f_b_hz` (NaN when not measured). Labels are appended to *labels.
+// `diagnosed_f_b_hz` (NaN when not measured) and `diagnose_note` (why a record was not diagnosed,
+// e.g. too short for the cage rate; empty otherwise). Labels are appended to *labels.
 void PostProcessCase(const Sweep& sweep,
                      const SweepCase& c,
                      const sim::Scene& scene,

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -201,6 +202,43 @@ TEST(DatasetTest, AFailingCaseIsRecordedAndSkippedUntilRetried) {
   EXPECT_NE(again.out.find("1 already done, 0 run now, 0 failed"), std::string::npos) << again.out;
   const auto retry = testing::RunSpall(run + " --retry-failed");
   EXPECT_NE(retry.out.find("0 run now, 1 failed"), std::string::npos) << retry.out;
+  fs::remove_all(dir);
+}
+
+TEST(DatasetTest, NoiseIsAddedAtTheAskedSnrAndEquallyToDuplicatedChannels) {
+  const std::string dir = Scratch("noise");
+  auto write = [&](const std::string& name, const std::string& post) {
+    std::ofstream(dir + "/" + name) << "[base]\nscene = \"" SPALLKIT_SOURCE_DIR
+                                       "/datasets/scenes/paper-verification.toml\"\n"
+                                       "[base.set]\n\"model.fidelity\" = \"hybrid\"\n"
+                                       "\"mesh.size_mm\" = 2.0\n\"run.duration_s\" = 0.01\n"
+                                    << post;
+    return LoadSweep(dir + "/" + name);
+  };
+  DatasetOptions options;
+  options.out_dir = dir + "/clean";
+  RunDataset(write("clean.toml", ""), options);
+  options.out_dir = dir + "/noisy";
+  RunDataset(write("noisy.toml", "[post]\nnoise_snr_db = 20.0\n"), options);
+  const h5::File clean = h5::File::OpenReadOnly(dir + "/clean/case-00000.h5");
+  const h5::File noisy = h5::File::OpenReadOnly(dir + "/noisy/case-00000.h5");
+  const std::vector<double> x = clean.ReadDataset("/signals/accel_y");
+  const std::vector<double> y = noisy.ReadDataset("/signals/accel_y");
+  ASSERT_EQ(x.size(), y.size());
+  double mean = 0;
+  for (double v : x) mean += v / x.size();
+  double signal = 0, noise = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    signal += (x[i] - mean) * (x[i] - mean);
+    noise += (y[i] - x[i]) * (y[i] - x[i]);
+  }
+  // 201 samples: the noise power's estimate has a relative spread of 1/sqrt(100) = 10 %.
+  EXPECT_NEAR(10 * std::log10(signal / noise), 20.0, 1.5);
+  // accel_y is the top sensor's y channel: the same noise on both.
+  EXPECT_TRUE(noisy.ReadDataset("/signals/top_y") == y);
+  EXPECT_EQ(noisy.ReadDoubleAttribute("/signals/accel_y", "noise_snr_db"), 20.0);
+  EXPECT_EQ(noisy.ReadDoubleAttribute("/signals/accel_y", "sample_rate_hz"), 20000.0);
+  EXPECT_EQ(noisy.ReadDoubleAttribute("/", "noise_snr_db"), 20.0);  // a label too
   fs::remove_all(dir);
 }
 
