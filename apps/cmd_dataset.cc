@@ -70,6 +70,12 @@ int Run(const Opts& o, spallkit::study::MpiWorld& world) {
   const study::Sweep sweep = study::LoadSweep(o.sweep);
   if (o.dry_run) return world.rank() == 0 ? DryRun(sweep) : 0;
   if (o.out.empty()) throw InputError("dataset run: --out DIR is required");
+  // Several processes that cannot talk to each other would all run every case.
+  if (world.size() == 1 && study::MpiWorld::LauncherSize() > 1)
+    throw InputError("dataset run: started by mpirun on " +
+                     std::to_string(study::MpiWorld::LauncherSize()) +
+                     " processes, but this spall was built without MPI; rebuild with Open MPI "
+                     "(scripts/install-deps.sh) or use --shard i/n");
 
   study::DatasetOptions options;
   options.out_dir = o.out;

@@ -1,4 +1,5 @@
-// spall simulate: runs the explicit FE bearing model of a scene and writes the results.
+// spall simulate: runs the bearing model of a scene (fe, hybrid, lumped, or auto: the cheapest
+// rung that meets [run.tolerance]) and writes the results.
 //
 //   spall simulate SCENE.toml [-o run.h5] [--csv accel.csv] [--set key=value]... [--resume]
 //                  [--stop-after-ms T] [--quiet] [--energy-ledger]
@@ -92,6 +93,8 @@ int Run(const Opts& o) {
       std::fflush(stderr);
     };
   sim::Simulation simulation(scene, so);
+  if (!o.quiet || scene.model.fidelity == "auto")
+    std::printf("%s\n", simulation.fidelity_reason().c_str());
   if (!o.quiet) std::printf("%s\n", simulation.model().Describe().c_str());
   for (const std::string& w : simulation.model().Warnings())
     std::fprintf(stderr, "spall: warning: %s\n", w.c_str());

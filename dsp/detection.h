@@ -36,6 +36,8 @@
 #include <vector>
 
 #include "dsp/fault_bands.h"
+#include "dsp/gamma_tail.h"
+#include "dsp/noise_floor.h"
 
 namespace spallkit::dsp {
 
@@ -66,23 +68,8 @@ struct DetectionOptions {
   bool IsValid(std::string* error) const;
 };
 
-// A power spectrum normalised by its robust local floor.
-struct NormalizedSpectrum {
-  std::vector<double> power;  // input power, bin i at i * resolution_hz
-  std::vector<double> floor;  // local mean estimate mu
-  std::vector<double> z;      // power / floor
-  double resolution_hz = 0.0;
-  double effective_samples = 0.0;  // n of the Lomax tail
-  double envelope_mean = 0.0;      // mean of the squared envelope (level units), 0 = unknown
-
-  // Null probability that one bin exceeds z.
-  double BinTail(double z_value) const;
-  // Null p-value of the larger of two adjacent bins.
-  double PairPValue(double z_value) const;
-};
-
-// Running median / ln 2 over `options.floor_window_bins` bins (the window is shifted, not clipped,
-// at the spectrum edges; bin 0 is ignored). Computed every few bins and interpolated linearly.
+// Running median / ln 2 over `options.floor_window_bins` bins (dsp/noise_floor.h), after the
+// options are validated.
 NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
                                      double resolution_hz,
                                      const DetectionOptions& options = {});
@@ -204,10 +191,5 @@ class CombSearch {
   std::vector<int> used_;  // lines used (not excluded) at each grid point
   int combinations_ = 0;   // distinct bin combinations along the grid
 };
-
-// log of the regularised upper incomplete gamma Q(m, x) for integer m >= 1 (sum of m Exp(1)).
-double LogGammaUpperTail(int m, double x);
-// Smallest x with mult * Q(m, x) <= alpha.
-double GammaThreshold(int m, double alpha_over_mult);
 
 }  // namespace spallkit::dsp

@@ -210,12 +210,21 @@ std::string Fmt(const char* fmt, double v) {
   return buf;
 }
 
-}  // namespace
+// What the kinematics ask of the analysis.
+struct AnalysisNeeds {
+  double max_scale = 1.0;   // largest speed x slip factor searched
+  double alpha_need = 0.0;  // highest cyclic frequency any family can put a line at
+  double duration_s = 0.0;
+};
 
-Diagnosis Diagnose(const Record& record,
-                   const BearingGeometry& bearing,
-                   double shaft_hz,
-                   const DiagnoseOptions& options) {
+// Validates the inputs, fills the record and kinematic fields of *d, and refuses a record whose
+// rate cannot hold the fault lines or whose length cannot hold the cage rate and the noise floor.
+AnalysisNeeds SetUpDiagnosis(const Record& record,
+                             const BearingGeometry& bearing,
+                             double shaft_hz,
+                             const DiagnoseOptions& options,
+                             Diagnosis* d) {
+  AnalysisNeeds needs;
   std::string error;
   if (!options.IsValid(&error)) throw InputError("diagnose: " + error);
   if (!(shaft_hz > 0.0) || !std::isfinite(shaft_hz))
@@ -225,17 +234,16 @@ Diagnosis Diagnose(const Record& record,
   if (!(fs > 0.0) || !std::isfinite(fs))
     throw InputError("diagnose: sample rate must be > 0 Hz (got " + Fmt("%g", fs) + ")");
 
-  Diagnosis d;
-  d.options = options;
-  d.bearing = bearing.name;
-  d.kinematics = ComputeFrequencies(bearing, shaft_hz);
-  d.sample_rate_hz = fs;
-  d.samples = static_cast<int>(record.samples.size());
-  d.source = record.source;
-  d.channel = record.channel;
-  d.units = record.units;
+  d->options = options;
+  d->bearing = bearing.name;
+  d->kinematics = ComputeFrequencies(bearing, shaft_hz);
+  d->sample_rate_hz = fs;
+  d->samples = static_cast<int>(record.samples.size());
+  d->source = record.source;
+  d->channel = record.channel;
+  d->units = record.units;
 
-  const auto& kin = d.kinematics;
+  const auto& kin = d->kinematics;
   const double top_fundamental = std::max({kin.bpfi_hz, kin.bpfo_hz, kin.f_b_hz});
   if (top_fundamental >= 0.5 * fs)
     throw InputError("diagnose: fault frequencies above Nyquist: BPFI " + Fmt("%.1f", kin.bpfi_hz) +
@@ -244,26 +252,129 @@ Diagnosis Diagnose(const Record& record,
   FaultBandOptions fbo;
   fbo.harmonics = options.harmonics;
   fbo.tolerance = options.tolerance;
-  d.families = MakeFaultFamilies(kin, fbo);
+  d->families = MakeFaultFamilies(kin, fbo);
 
-  const double max_scale = (1.0 + options.speed_search) * (1.0 + options.tolerance);
-  const double alpha_need = NeededAlpha(d.families, max_scale);
-  if (alpha_need > 0.25 * fs)
-    throw InputError("diagnose: fault lines up to " + Fmt("%.0f", alpha_need) + " Hz (harmonics " +
-                     std::to_string(options.harmonics) +
+  needs.max_scale = (1.0 + options.speed_search) * (1.0 + options.tolerance);
+  needs.alpha_need = NeededAlpha(d->families, needs.max_scale);
+  if (needs.alpha_need > 0.25 * fs)
+    throw InputError("diagnose: fault lines up to " + Fmt("%.0f", needs.alpha_need) +
+                     " Hz (harmonics " + std::to_string(options.harmonics) +
                      ") need a demodulation band that wide above them: fs must be >= " +
-                     Fmt("%.0f", 4.0 * alpha_need) + " Hz (got " + Fmt("%g", fs) +
+                     Fmt("%.0f", 4.0 * needs.alpha_need) + " Hz (got " + Fmt("%g", fs) +
                      "; lower --harmonics or check --rpm)");
 
-  const double duration = d.samples / fs;
+  needs.duration_s = d->samples / fs;
   const double min_duration =
-      std::max((options.floor_window_bins + 2) / alpha_need, 4.0 / kin.cage_hz);
-  if (duration < min_duration)
-    throw InputError("diagnose: too few samples: " + std::to_string(d.samples) + " (" +
-                     Fmt("%.3g", duration) + " s at " + Fmt("%g", fs) +
+      std::max((options.floor_window_bins + 2) / needs.alpha_need, 4.0 / kin.cage_hz);
+  if (needs.duration_s < min_duration)
+    throw InputError("diagnose: too few samples: " + std::to_string(d->samples) + " (" +
+                     Fmt("%.3g", needs.duration_s) + " s at " + Fmt("%g", fs) +
                      " Hz); the analysis needs " + Fmt("%.3g", min_duration) + " s (" +
                      std::to_string(static_cast<long>(std::ceil(min_duration * fs))) +
                      " samples) to resolve the cage rate and the noise floor");
+  return needs;
+}
+
+// Candidate bands: kurtogram nodes at least band_need wide (every line of one race or roller
+// family), at most kMaxWidthFactor alpha_need (wider nodes only dilute a resonance with noise and
+// cost the most to demodulate), starting above alpha_need / 2.
+std::vector<KurtogramNode> CandidateBands(const std::vector<KurtogramNode>& nodes,
+                                          double band_need,
+                                          double alpha_need,
+                                          double fs) {
+  std::vector<KurtogramNode> candidates;
+  for (const auto& node : nodes) {
+    const Band b = node.band();
+    if (b.width_hz() >= band_need && b.width_hz() <= kMaxWidthFactor * alpha_need &&
+        b.low_hz >= 0.5 * alpha_need)
+      candidates.push_back(node);
+  }
+  if (candidates.empty())
+    throw InputError("diagnose: no demodulation band of width >= " + Fmt("%.0f", band_need) +
+                     " Hz fits below fs/2 = " + Fmt("%.0f", 0.5 * fs) + " Hz");
+  return candidates;
+}
+
+// The reported band, its SES (level = sqrt(P), as EnvelopeAnalyzer::Compute gives it), its floor
+// and its detections.
+void SetChosenBand(BandResult chosen, double df, Diagnosis* d) {
+  d->band = chosen.node.band();
+  d->band_kurtosis = chosen.node.kurtosis;
+  d->band_level = chosen.node.level;
+  d->ses.resolution_hz = df;
+  d->ses.band = d->band;
+  d->ses.squared = true;
+  d->ses.envelope_rate_hz = chosen.envelope_size * df;
+  const auto& power = chosen.normalized.power;
+  d->ses.freq_hz.resize(power.size());
+  d->ses.level.resize(power.size());
+  for (size_t k = 0; k < power.size(); ++k) {
+    d->ses.freq_hz[k] = k * df;
+    d->ses.level[k] = std::sqrt(power[k]);
+  }
+  d->normalized = std::move(chosen.normalized);
+  d->faults = std::move(chosen.detections);
+}
+
+// A family is claimed only when the record holds min_periods periods of its fundamental: the
+// lowest lines of a shorter record sit within a few dozen bins of alpha = 0, where the SES of
+// real (non-stationary) vibration rises and the floor window is shifted, not centred. Matters
+// for the cage (f_c ~ 0.4 f_r) on records of a few seconds or less.
+void ApplyRecordLengthRule(double duration, double min_periods, Diagnosis* d) {
+  for (auto& det : d->faults) {
+    const double periods = duration * d->families[static_cast<int>(det.component)].fundamental_hz;
+    if (det.detected && periods < min_periods) {
+      det.detected = false;
+      det.reason = "not claimed: the record holds " + Fmt("%.1f", periods) + " periods of " +
+                   ComponentSymbol(det.component) +
+                   ", a claim needs >= " + Fmt("%.0f", min_periods) + " (" + det.reason + ")";
+    }
+  }
+}
+
+// Measured rates of a roller defect (f_b from its comb, f_c from its sidebands and modulation
+// lines) or of a cage comb, and their slips against the kinematics.
+void MeasureDetectedRates(double shaft_hz, const DetectionOptions& dopt, Diagnosis* d) {
+  const auto& kin = d->kinematics;
+  for (const auto& det : d->faults) {
+    if (!det.detected) continue;
+    const FaultFamily& fam = d->families[static_cast<int>(det.component)];
+    if (det.component == FaultComponent::kRollingElement && !d->measured_f_b_hz) {
+      d->measured_f_b_hz = det.fundamental_hz;  // = MeasureRates(...).fundamental_hz
+      const CageRateMeasurement fc =
+          MeasureRollerCageRate(d->normalized, det, fam, kin.cage_hz, shaft_hz, dopt);
+      if (fc.hz > 0.0) {
+        d->measured_f_c_hz = fc.hz;
+        d->f_c_source = fc.Source();
+      }
+    }
+    if (det.component == FaultComponent::kCage && !d->measured_f_c_hz) {
+      d->measured_f_c_hz = det.fundamental_hz;
+      d->f_c_source = "cage comb";
+    }
+  }
+  if (d->measured_f_b_hz) d->f_b_slip_percent = (*d->measured_f_b_hz / kin.f_b_hz - 1.0) * 100.0;
+  if (d->measured_f_c_hz) d->f_c_slip_percent = (*d->measured_f_c_hz / kin.cage_hz - 1.0) * 100.0;
+}
+
+// The first detected family in ranking order, else healthy.
+Verdict FirstDetectedVerdict(const std::vector<FamilyDetection>& ranked) {
+  for (const auto& det : ranked)
+    if (det.detected) return VerdictOf(det.component);
+  return Verdict::kHealthy;
+}
+
+}  // namespace
+
+Diagnosis Diagnose(const Record& record,
+                   const BearingGeometry& bearing,
+                   double shaft_hz,
+                   const DiagnoseOptions& options) {
+  Diagnosis d;
+  const AnalysisNeeds needs = SetUpDiagnosis(record, bearing, shaft_hz, options, &d);
+  const double fs = record.sample_rate_hz;
+  const double max_scale = needs.max_scale, alpha_need = needs.alpha_need;
+  const double duration = needs.duration_s;
 
   // Refuses non-finite and constant records; spikes and clipping become warnings.
   d.warnings = CheckRecord(record.samples).warnings;
@@ -352,19 +463,7 @@ Diagnosis Diagnose(const Record& record,
   }
   d.measured_shaft_hz = shaft_measured;
 
-  // Candidate bands.
-  std::vector<KurtogramNode> candidates;
-  for (const auto& node : nodes) {
-    const Band b = node.band();
-    // Nodes much wider than the lines need only dilute a resonance with noise and cost the
-    // most to demodulate: keep widths in [band_need, 8 alpha_need].
-    if (b.width_hz() >= band_need && b.width_hz() <= kMaxWidthFactor * alpha_need &&
-        b.low_hz >= 0.5 * alpha_need)
-      candidates.push_back(node);
-  }
-  if (candidates.empty())
-    throw InputError("diagnose: no demodulation band of width >= " + Fmt("%.0f", band_need) +
-                     " Hz fits below fs/2 = " + Fmt("%.0f", 0.5 * fs) + " Hz");
+  const std::vector<KurtogramNode> candidates = CandidateBands(nodes, band_need, alpha_need, fs);
   // Bonferroni over every candidate band, searched or not: the early stop below only ever
   // searches fewer, so the false-alarm design is the same as searching them all.
   d.candidate_bands = static_cast<int>(candidates.size());
@@ -518,23 +617,7 @@ Diagnosis Diagnose(const Record& record,
     chosen = std::move(*kurt_choice);
     d.band_selection = BandSelection::kKurtogram;
   }
-  d.band = chosen.node.band();
-  d.band_kurtosis = chosen.node.kurtosis;
-  d.band_level = chosen.node.level;
-  // The reported SES is the chosen band's: level = sqrt(P), as EnvelopeAnalyzer::Compute gives it.
-  d.ses.resolution_hz = df;
-  d.ses.band = d.band;
-  d.ses.squared = true;
-  d.ses.envelope_rate_hz = chosen.envelope_size * df;
-  const auto& chosen_power = chosen.normalized.power;
-  d.ses.freq_hz.resize(chosen_power.size());
-  d.ses.level.resize(chosen_power.size());
-  for (size_t k = 0; k < chosen_power.size(); ++k) {
-    d.ses.freq_hz[k] = k * df;
-    d.ses.level[k] = std::sqrt(chosen_power[k]);
-  }
-  d.normalized = std::move(chosen.normalized);
-  d.faults = std::move(chosen.detections);
+  SetChosenBand(std::move(chosen), df, &d);
 
   // Joint explanation: the best family claims the lines it explains, the others are re-tested on
   // what is left; ranked = explanation order, then the undetected by p-value.
@@ -543,48 +626,10 @@ Diagnosis Diagnose(const Record& record,
   d.explained_lines = std::move(joint.explained);
   d.roller_integer_ratio_mismatch = joint.roller_integer_ratio_mismatch;
 
-  // A family is claimed only when the record holds min_periods periods of its fundamental: the
-  // lowest lines of a shorter record sit within a few dozen bins of alpha = 0, where the SES of
-  // real (non-stationary) vibration rises and the floor window is shifted, not centred. Matters
-  // for the cage (f_c ~ 0.4 f_r) on records of a few seconds or less.
-  for (auto& det : d.faults) {
-    const double periods = duration * d.families[static_cast<int>(det.component)].fundamental_hz;
-    if (det.detected && periods < options.min_periods) {
-      det.detected = false;
-      det.reason = "not claimed: the record holds " + Fmt("%.1f", periods) + " periods of " +
-                   ComponentSymbol(det.component) +
-                   ", a claim needs >= " + Fmt("%.0f", options.min_periods) + " (" + det.reason +
-                   ")";
-    }
-  }
+  ApplyRecordLengthRule(duration, options.min_periods, &d);
 
-  // Measured rates of a roller defect (f_b, f_c from its sidebands) or of a cage comb.
-  const double shaft_for_rates = shaft_measured ? *shaft_measured : shaft_hz;
-  for (const auto& det : d.faults) {
-    if (!det.detected) continue;
-    const FaultFamily& fam = d.families[static_cast<int>(det.component)];
-    if (det.component == FaultComponent::kRollingElement && !d.measured_f_b_hz) {
-      d.measured_f_b_hz = det.fundamental_hz;  // = MeasureRates(...).fundamental_hz
-      const CageRateMeasurement fc =
-          MeasureRollerCageRate(d.normalized, det, fam, kin.cage_hz, shaft_for_rates, dopt);
-      if (fc.hz > 0.0) {
-        d.measured_f_c_hz = fc.hz;
-        d.f_c_source = fc.Source();
-      }
-    }
-    if (det.component == FaultComponent::kCage && !d.measured_f_c_hz) {
-      d.measured_f_c_hz = det.fundamental_hz;
-      d.f_c_source = "cage comb";
-    }
-  }
-  if (d.measured_f_b_hz) d.f_b_slip_percent = (*d.measured_f_b_hz / kin.f_b_hz - 1.0) * 100.0;
-  if (d.measured_f_c_hz) d.f_c_slip_percent = (*d.measured_f_c_hz / kin.cage_hz - 1.0) * 100.0;
-  d.verdict = Verdict::kHealthy;
-  for (const auto& det : d.faults)
-    if (det.detected) {
-      d.verdict = VerdictOf(det.component);
-      break;
-    }
+  MeasureDetectedRates(shaft_measured ? *shaft_measured : shaft_hz, dopt, &d);
+  d.verdict = FirstDetectedVerdict(d.faults);
   return d;
 }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -393,7 +394,10 @@ DatasetSummary RunDataset(const Sweep& sweep, const DatasetOptions& options) {
   progress.total = summary.part_cases;
   progress.done = summary.already_done;
   int ran_now = 0;
-  auto worker = [&] {
+  // An error outside a case (writing the index, the progress callback) stops every worker and is
+  // rethrown once they have joined; a thread must not end the process.
+  std::exception_ptr error_in_worker;
+  auto work = [&] {
     for (size_t k = next++; k < todo.size(); k = next++) {
       const int i = todo[k];
       {
@@ -423,11 +427,21 @@ DatasetSummary RunDataset(const Sweep& sweep, const DatasetOptions& options) {
       }
     }
   };
+  auto worker = [&] {
+    try {
+      work();
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!error_in_worker) error_in_worker = std::current_exception();
+      next = todo.size();
+    }
+  };
   const int threads = std::max(1, std::min<int>(options.workers, static_cast<int>(todo.size())));
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
+  if (error_in_worker) std::rethrow_exception(error_in_worker);
 
   if (options.write_index) WriteIndex(sweep, options.out_dir, entries);
   summary.pending = summary.part_cases - summary.already_done - summary.ran;

@@ -1,5 +1,6 @@
 #include "study/mpi_world.h"
 
+#include <algorithm>
 #include <cstdlib>
 
 #ifdef SPALLKIT_HAVE_MPI
@@ -21,6 +22,12 @@ bool MpiWorld::BuiltWithMpi() {
 
 bool MpiWorld::LaunchedByMpi() {
   return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE") || std::getenv("PMIX_RANK");
+}
+
+int MpiWorld::LauncherSize() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
+    if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
+  return 1;
 }
 
 MpiWorld::MpiWorld() {

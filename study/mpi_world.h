@@ -26,6 +26,9 @@ class MpiWorld {
 
   static bool BuiltWithMpi();
   static bool LaunchedByMpi();
+  // The number of processes the launcher started (its environment; 1 when not launched by one),
+  // known even to a build without MPI.
+  static int LauncherSize();
 
  private:
   int rank_ = 0, size_ = 1;

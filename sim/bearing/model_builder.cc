@@ -45,24 +45,10 @@ BodyMotion FitMotion(const fe::NodalState& s, const std::vector<int>& nodes) {
 
 }  // namespace
 
-bool BearingModelOptions::IsValid(std::string* error) const {
-  auto fail = [&](const char* m) {
-    if (error) *error = m;
-    return false;
-  };
-  if (!(race_penalty_scale > 0)) return fail("bearing model: race_penalty_scale must be > 0");
-  if (!(cage_penalty_scale > 0)) return fail("bearing model: cage_penalty_scale must be > 0");
-  if (!(contact_damping_ratio >= 0 && contact_damping_ratio <= 1))
-    return fail("bearing model: contact_damping_ratio must be in [0, 1]");
-  return cage_guide.IsValid(error);
-}
-
-BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& options)
-    : scene_(scene), options_(options) {
-  std::string err;
-  if (!options_.IsValid(&err)) throw InputError(err);
-  const bool hybrid = scene_.model.fidelity == "hybrid";
-  num_rollers_ = scene_.geometry.bearing.num_elements;
+FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& options)
+    : BearingModel(scene, options) {
+  const bool housing_only = options_.housing_only;
+  const bool hybrid = scene_.model.fidelity == "hybrid" || housing_only;
   mesh_ = hybrid ? MeshBearingHousing(scene_) : MeshBearing(scene_);
   mesh_quality_ = MeasureMeshQuality(mesh_.mesh);
   const fe::Mesh& mesh = mesh_.mesh;
@@ -102,8 +88,9 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
   // Shaft: inner-ring bore as a rigid body, rotation prescribed, translation free, load down.
   const double omega = scene_.operation.inner_ring_speed_rad_s;
   const double ramp = scene_.operation.ramp_s;
-  speed_ = solver::RampedSpeed(omega, ramp);
-  if (hybrid) {
+  if (housing_only) {
+    // The housing alone (the lumped model's fit applies its own loads).
+  } else if (hybrid) {
     // Rollers, cage and inner ring: rigid bodies in one contributor (before the tie, which
     // must see the contact forces on the ring nodes).
     hybrid_ = std::make_unique<HybridRollers>(
@@ -239,21 +226,21 @@ BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& option
   }
 }
 
-double BearingModel::RollerOuterForce(int j) const {
+double FeBearingModel::RollerOuterForce(int j) const {
   if (hybrid_) return hybrid_->rollers().OuterForce(j);
   return outer_pairs_[j]->Resultant().NormalMagnitude();
 }
-double BearingModel::RollerInnerForce(int j) const {
+double FeBearingModel::RollerInnerForce(int j) const {
   if (hybrid_) return hybrid_->rollers().InnerForce(j);
   return inner_pairs_[j]->Resultant().NormalMagnitude();
 }
-double BearingModel::RollerCageForce(int j) const {
+double FeBearingModel::RollerCageForce(int j) const {
   if (hybrid_) return hybrid_->rollers().CageForce(j);
   return cage_pairs_[2 * j]->Resultant().NormalMagnitude() +
          cage_pairs_[2 * j + 1]->Resultant().NormalMagnitude() + cage_guide_->Force(j);
 }
 
-BodyMotion BearingModel::RollerMotion(int j) const {
+BodyMotion FeBearingModel::RollerMotion(int j) const {
   if (hybrid_) {
     const PlanarBody& b = hybrid_->rollers().roller(j);
     return {b.x, b.y, b.vx, b.vy, b.omega};
@@ -261,7 +248,25 @@ BodyMotion BearingModel::RollerMotion(int j) const {
   return FitMotion(solver_->state(), roller_nodes_[j]);
 }
 
-BodyMotion BearingModel::CageMotion() const {
+void FeBearingModel::SetObserver(std::function<void()> observer) {
+  if (!observer) {
+    solver_->SetOutputCallback(nullptr);
+    return;
+  }
+  solver_->SetOutputCallback([observer](const solver::ExplicitSolver&) { observer(); });
+}
+
+double FeBearingModel::SensorVelocity(int channel) const {
+  const SensorChannel& ch = channels_[channel];
+  const fe::NodalState& s = solver_->state();
+  return ch.direction == 'x' ? s.vx[ch.node] : s.vy[ch.node];
+}
+
+std::string FeBearingModel::SaveState() const { return solver_->SaveState(); }
+
+void FeBearingModel::LoadState(const std::string& bytes) { solver_->LoadState(bytes); }
+
+BodyMotion FeBearingModel::CageMotion() const {
   if (hybrid_) {
     const PlanarBody& b = hybrid_->rollers().cage();
     return {b.x, b.y, b.vx, b.vy, b.omega};
@@ -270,7 +275,7 @@ BodyMotion BearingModel::CageMotion() const {
   return {m.cx, m.cy, m.vx, m.vy, m.omega};
 }
 
-BodyMotion BearingModel::InnerRingMotion() const {
+BodyMotion FeBearingModel::InnerRingMotion() const {
   if (hybrid_) {
     const PlanarBody& b = hybrid_->rollers().shaft();
     return {b.x, b.y, b.vx, b.vy, speed_(solver_->time())};
@@ -279,26 +284,18 @@ BodyMotion BearingModel::InnerRingMotion() const {
   return {s.x, s.y, s.vx, s.vy, speed_(solver_->time())};
 }
 
-double BearingModel::InnerRingSpeed(double t) const { return speed_(t); }
-
-double BearingModel::TheoreticalCageSpeed(double t) const {
-  const BearingGeometry& b = scene_.geometry.bearing;
-  const double gamma = b.element_diameter_m * std::cos(b.contact_angle_rad) / b.pitch_diameter_m;
-  return 0.5 * speed_(t) * (1.0 - gamma);
-}
-
-bool BearingModel::KeepsArcsOnItsSpall(int roller) const {
+bool FeBearingModel::KeepsArcsOnItsSpall(int roller) const {
   bool spalled = false;
   for (const Defect& d : scene_.defects) spalled = spalled || d.roller == roller;
   return spalled && scene_.mesh.contact_size_m >= kCurvedMinRimSpacing;
 }
 
-std::vector<std::string> BearingModel::Warnings() const {
+std::vector<std::string> FeBearingModel::Warnings() const {
   std::vector<std::string> out;
   if (hybrid_) return out;  // exact circles: no facets, no arcs
   // Rim facets of the healthy rollers (a notched roller's surface has extra notch nodes).
   int facets = 0;
-  for (int j = 0; j < num_rollers_; ++j) {
+  for (int j = 0; j < num_rollers(); ++j) {
     bool defective = false;
     for (const Defect& d : scene_.defects) defective = defective || d.roller == j;
     if (defective) continue;
@@ -343,7 +340,7 @@ std::vector<std::string> BearingModel::Warnings() const {
   return out;
 }
 
-std::string BearingModel::Describe() const {
+std::string FeBearingModel::Describe() const {
   std::ostringstream os;
   const fe::Mesh& m = mesh_.mesh;
   if (hybrid_) {

@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/bearing/bearing_model.h"
 #include "sim/bearing/constraints.h"
 #include "sim/bearing/hybrid_rollers.h"
 #include "sim/bearing/mesher.h"
@@ -46,78 +47,50 @@
 
 namespace spallkit::sim {
 
-struct BearingModelOptions {
-  // Bulk-modulus penalty scale f (k = f K L^2 / A t) for roller-race and roller-cage pairs.
-  // Larger is stiffer (closer to Hertz/Palmgren) but shortens the contact stable step.
-  double race_penalty_scale = 0.3;
-  double cage_penalty_scale = 0.1;
-  // Normal contact damping, fraction of critical of each contact spring.
-  double contact_damping_ratio = 0.1;
-  // Hybrid model (scene model.fidelity = "hybrid") contact options.
-  HybridOptions hybrid;
-  // Roller-guided cage's radial play, both models (constraints.h).
-  CageGuideOptions cage_guide;
-  // Diagnostic: the solver keeps a work ledger per contact pair and constraint
-  // (solver::SolverOptions::track_contributor_work; slower).
-  bool track_contributor_work = false;
-
-  bool IsValid(std::string* error) const;
-};
-
-// One accelerometer channel: a mesh node near the scene's sensor point and a direction.
-struct SensorChannel {
-  std::string sensor;     // scene sensor name
-  char direction = 'y';   // 'x' or 'y'
-  int node = -1;          // nearest outer-ring or adapter node
-  double distance_m = 0;  // from the requested point to that node
-};
-
-// Rigid-body fit of a node set (mass centre, velocity, spin), from positions x^n and
-// velocities v^(n-1/2).
-struct BodyMotion {
-  double cx = 0, cy = 0, vx = 0, vy = 0, omega = 0;
-};
-
-class BearingModel {
+class FeBearingModel : public BearingModel {
  public:
-  // Meshes the scene and builds the solver. Throws InputError naming the scene key (or option)
-  // when something cannot be built.
-  explicit BearingModel(const Scene& scene, const BearingModelOptions& options = {});
-  BearingModel(const BearingModel&) = delete;
-  BearingModel& operator=(const BearingModel&) = delete;
+  // Meshes the scene (fidelity "fe": every part; "hybrid": the housing) and builds the solver.
+  // Throws InputError naming the scene key (or option) when something cannot be built.
+  explicit FeBearingModel(const Scene& scene, const BearingModelOptions& options = {});
+
+  Fidelity fidelity() const override { return hybrid_ ? Fidelity::kHybrid : Fidelity::kFe; }
+  solver::SolverSummary Run(double end_time) override { return solver_->Run(end_time); }
+  double time() const override { return solver_->time(); }
+  long step() const override { return solver_->step(); }
+  double time_step() const override { return solver_->time_step(); }
+  solver::Energies energies() const override { return solver_->energies(); }
+  std::vector<solver::ContributorLedger> ContributorLedgers() const override {
+    return solver_->ContributorLedgers();
+  }
+  void SetObserver(std::function<void()> observer) override;
+  std::string SaveState() const override;
+  void LoadState(const std::string& bytes) override;
+  double SensorVelocity(int channel) const override;
+  int num_elements() const override { return mesh_.mesh.num_elements(); }
+  int num_nodes() const override { return mesh_.mesh.num_nodes(); }
 
   solver::ExplicitSolver& solver() { return *solver_; }
   const solver::ExplicitSolver& solver() const { return *solver_; }
-  const Scene& scene() const { return scene_; }
-  const BearingMesh& bearing_mesh() const { return mesh_; }
-  const BearingModelOptions& options() const { return options_; }
-  int num_rollers() const { return num_rollers_; }
+  const BearingMesh& bearing_mesh() const override { return mesh_; }
   bool hybrid() const { return hybrid_ != nullptr; }
   // The rigid half of the hybrid model; nullptr in the FE model.
   const HybridRollers* hybrid_rollers() const { return hybrid_.get(); }
 
   // Contact normal force on roller j (N, whole section) at the last step: magnitude of the
   // resultant of the pair's normal nodal forces. Cage: both pocket walls, summed.
-  double RollerOuterForce(int j) const;
-  double RollerInnerForce(int j) const;
-  double RollerCageForce(int j) const;
-  BodyMotion RollerMotion(int j) const;
+  double RollerOuterForce(int j) const override;
+  double RollerInnerForce(int j) const override;
+  double RollerCageForce(int j) const override;
+  BodyMotion RollerMotion(int j) const override;
   // FE model only (empty in the hybrid model: do not call).
   const contact::ContactPair& outer_pair(int j) const { return *outer_pairs_[j]; }
   const contact::ContactPair& inner_pair(int j) const { return *inner_pairs_[j]; }
-  BodyMotion CageMotion() const;
-  BodyMotion InnerRingMotion() const;  // the shaft rigid body (velocity at n-1/2)
+  BodyMotion CageMotion() const override;
+  BodyMotion InnerRingMotion() const override;  // the shaft rigid body (velocity at n-1/2)
 
-  // Prescribed inner-ring speed (rad/s) and the pure-rolling cage speed 1/2 w_i (1 - D/d_m) at t.
-  double InnerRingSpeed(double t) const;
-  double TheoreticalCageSpeed(double t) const;
-
-  const std::vector<SensorChannel>& sensor_channels() const { return channels_; }
-  // Element quality per mesh part, measured once when the model is built.
-  const MeshQualityReport& mesh_quality() const { return mesh_quality_; }
   // Parts, element/node counts, contact pairs, constraints and the mesh quality (rollers merged
   // into one line): a few lines for logs.
-  std::string Describe() const;
+  std::string Describe() const override;
   // One line per known way this scene's model will not represent the bearing (printed by spall
   // simulate as warnings). Today: full-FE rollers locked on their rim facets, and the curved race
   // contact on rims finer than kCurvedMinRimSpacing. A polygonal roller
@@ -126,7 +99,7 @@ class BearingModel {
   // (mu N = 0.4: cage 1-8 % of its speed) and roll at mu = 0.1; N = 80 (0.25 mm) rolls at
   // mu = 0.01 (mu N = 0.8). Warns when the sliding mu (mu_dynamic with a decay, else mu_static)
   // times N is below kRollingMinMuFacets.
-  std::vector<std::string> Warnings() const;
+  std::vector<std::string> Warnings() const override;
   static constexpr double kRollingMinMuFacets = 0.8;
   // Curved race contact: rims with a finer node spacing than this (m) are warned about (energy
   // created at dented nodes, measured at 0.255 mm; 0.51 mm balanced in every run so far; the
@@ -141,21 +114,15 @@ class BearingModel {
   bool KeepsArcsOnItsSpall(int roller) const;
 
  private:
-  Scene scene_;
-  BearingModelOptions options_;
   BearingMesh mesh_;
-  MeshQualityReport mesh_quality_;
   std::unique_ptr<solver::ExplicitSolver> solver_;
   std::vector<std::unique_ptr<contact::ContactPair>> outer_pairs_, inner_pairs_, cage_pairs_;
   std::unique_ptr<CagePocketGuide> cage_guide_;
   std::unique_ptr<RigidPart> cage_;
   std::unique_ptr<TiedNodes> tie_;
   std::unique_ptr<HybridRollers> hybrid_;
-  int num_rollers_ = 0;
   std::vector<std::vector<int>> roller_nodes_;
   int shaft_body_ = -1;
-  std::vector<SensorChannel> channels_;
-  solver::TimeFunction speed_;
 };
 
 }  // namespace spallkit::sim

@@ -92,19 +92,16 @@ void Recorder::PushFine(int c, double a) {
   if (static_cast<int>(accel_out_[c].size()) > num_samples_) accel_out_[c].resize(num_samples_);
 }
 
-void Recorder::Observe(const solver::ExplicitSolver& solver) {
-  const fe::NodalState& s = solver.state();
+void Recorder::Observe() {
+  const BearingModel& model = model_;
   const auto& channels = model_.sensor_channels();
   if (accel_) {
-    auto vel = [&](int c) {
-      const SensorChannel& ch = channels[c];
-      return ch.direction == 'x' ? s.vx[ch.node] : s.vy[ch.node];
-    };
-    if (solver.step() == 0) {
+    auto vel = [&](int c) { return model.SensorVelocity(c); };
+    if (model.step() == 0) {
       prev_t_ = 0.0;
       for (size_t c = 0; c < channels.size(); ++c) prev_v_[c] = last_fine_v_[c] = vel(c);
     } else {
-      const double t_mid = solver.time() - 0.5 * solver.time_step();
+      const double t_mid = model.time() - 0.5 * model.time_step();
       const double span = t_mid - prev_t_;
       while (fine_index_ < fine_needed_ && (fine_index_ + 0.5) * fine_h_ <= t_mid) {
         const double tau = (fine_index_ + 0.5) * fine_h_;
@@ -121,11 +118,11 @@ void Recorder::Observe(const solver::ExplicitSolver& solver) {
     }
   }
   while (next_sample_ < num_samples_ &&
-         solver.time() >= next_sample_ / options_.output_rate_hz - 1e-15)
-    Sample(solver);
+         model.time() >= next_sample_ / options_.output_rate_hz - 1e-15)
+    Sample();
 }
 
-void Recorder::Sample(const solver::ExplicitSolver& solver) {
+void Recorder::Sample() {
   const double tk = next_sample_ / options_.output_rate_hz;
   series_[idx_time_].data.push_back(tk);
   const int z = model_.num_rollers();
@@ -138,7 +135,7 @@ void Recorder::Sample(const solver::ExplicitSolver& solver) {
   }
   if (idx_omega_ >= 0) {
     const double w = model_.CageMotion().omega;
-    const double wt = model_.TheoreticalCageSpeed(solver.time());
+    const double wt = model_.TheoreticalCageSpeed(model_.time());
     series_[idx_omega_].data.push_back(w);
     series_[idx_slip_].data.push_back(wt != 0.0 ? (w - wt) / wt
                                                 : std::numeric_limits<double>::quiet_NaN());
@@ -154,7 +151,7 @@ void Recorder::Sample(const solver::ExplicitSolver& solver) {
     }
   }
   if (idx_energy_ >= 0) {
-    const solver::Energies e = solver.energies();
+    const solver::Energies e = model_.energies();
     const double v[kNumEnergyTerms] = {e.kinetic,
                                        e.internal,
                                        e.hourglass,

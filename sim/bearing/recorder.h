@@ -5,8 +5,8 @@
 //  - acceleration: each sensor channel's velocity is interpolated linearly between the solver's
 //    half-step velocities onto a uniform fine grid (fine_factor x output rate, at the half points
 //    (i + 1/2) h), differenced (the exact mean acceleration over [(i-1/2) h, (i+1/2) h], centred on
-//    i h), low-pass filtered and decimated to the output rate (spallkit::StreamingDecimator), so sample
-//    k is centred on t_k = k / output_rate like every other channel;
+//    i h), low-pass filtered and decimated to the output rate (spallkit::StreamingDecimator), so
+//    sample k is centred on t_k = k / output_rate like every other channel;
 //  - everything else is sampled at the first step with t >= t_k (at most one solver step, tens
 //    of ns, late): contact forces per roller, cage and roller rigid motion, energies. Outputs not
 //    listed in the scene's [run] outputs are neither computed nor written.
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "core/decimator.h"
-#include "sim/bearing/model_builder.h"
+#include "sim/bearing/bearing_model.h"
 
 namespace spallkit::h5 {
 class File;
@@ -47,8 +47,8 @@ class Recorder {
 
   Recorder(const BearingModel& model, const RecorderOptions& options);
 
-  // Call at t = 0 and after every step.
-  void Observe(const solver::ExplicitSolver& solver);
+  // Call at t = 0 and after every step of the model (BearingModel::SetObserver).
+  void Observe();
   // Completes the acceleration channels (the FIR look-ahead at the end holds the last value).
   void Finish();
   // Writes every series and its attributes (not the root attributes).
@@ -66,7 +66,7 @@ class Recorder {
   void LoadState(const std::string& bytes);
 
  private:
-  void Sample(const solver::ExplicitSolver& solver);
+  void Sample();
   void PushFine(int channel, double accel);
   bool Wants(const std::string& output) const;
 

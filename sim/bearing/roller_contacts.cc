@@ -16,6 +16,8 @@ namespace {
 constexpr int kFrictionSlots = 6;
 // Safety factor on the contacts' stable step (the solver scales only the element step).
 constexpr double kContactSafety = 0.8;
+// Rounding allowance of the "cannot touch" tests that skip a contact (m).
+constexpr double kReachMargin = 1e-9;
 
 }  // namespace
 
@@ -143,6 +145,7 @@ RollerContacts::RollerContacts(const Scene& scene,
     double m_min = roller_mass_[0];
     for (double m : roller_mass_) m_min = std::min(m_min, m);
     const double zeta = options_.contact_damping_ratio;
+    bound_normal_stiffness_ = kn;
     const double k = kn * (1.0 + options_.tangential_stiffness_ratio);
     auto limit = [zeta](double omega) { return 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta); };
     roller_dt_ = limit(std::sqrt(2.0 * k * 3.0 / m_min));
@@ -154,7 +157,18 @@ RollerContacts::RollerContacts(const Scene& scene,
   outer_force_.assign(z, 0.0);
   inner_force_.assign(z, 0.0);
   cage_force_.assign(z, 0.0);
+  // Reduced masses of each roller with each counter body (normal; tangential with the roller's
+  // m/3 for a force on its rim), in Counter order.
+  for (int j = 0; j < z; ++j)
+    for (double m_counter : {race_mass_, shaft_mass_, cage_mass_}) {
+      reduced_mass_.push_back(1.0 / (1.0 / roller_mass_[j] + 1.0 / m_counter));
+      reduced_mass_t_.push_back(1.0 / (3.0 / roller_mass_[j] + 1.0 / m_counter));
+    }
   fx_.assign(z, 0.0);
+  cos_.assign(z, 1.0);
+  sin_.assign(z, 0.0);
+  centre_x_.assign(z, 0.0);
+  centre_y_.assign(z, 0.0);
   fy_.assign(z, 0.0);
   torque_.assign(z, 0.0);
   friction_law_.static_coefficient = scene_.friction.mu_static;
@@ -172,8 +186,7 @@ void RollerContacts::RollerCentre(int j, double* x, double* y) const {
 int RollerContacts::RacePoints(int j, int which, const RollerProfile& p, RacePoint out[2]) const {
   // Positions only; the outer race radius is filled in by the caller (needs the nodal state).
   const Body& b = rollers_[j];
-  double cx, cy;
-  RollerCentre(j, &cx, &cy);
+  const double cx = centre_x_[j], cy = centre_y_[j];
   double dx, dy;  // unit direction from the roller centre towards the race contact
   if (which == 0) {
     const double d = std::hypot(cx, cy);
@@ -182,8 +195,7 @@ int RollerContacts::RacePoints(int j, int which, const RollerProfile& p, RacePoi
     const double ex = shaft_.x - cx, ey = shaft_.y - cy, d = std::hypot(ex, ey);
     dx = ex / d, dy = ey / d;
   }
-  const double a = std::atan2(dy, dx) - b.angle;
-  if (!p.InSpall(a)) {
+  if (!p.spalled || !p.InSpall(std::atan2(dy, dx) - b.angle)) {
     out[0] = {cx + p.radius * dx, cy + p.radius * dy, -dx, -dy, 0.0};
     return 1;
   }
@@ -191,7 +203,7 @@ int RollerContacts::RacePoints(int j, int which, const RollerProfile& p, RacePoi
   // the fillet radius along the race normal through each.
   double kx[2], ky[2];
   p.RimCorners(kx, ky);
-  const double c = std::cos(b.angle), s = std::sin(b.angle);
+  const double c = cos_[j], s = sin_[j];
   for (int k = 0; k < 2; ++k)
     out[k] = {cx + c * kx[k] - s * ky[k], cy + s * kx[k] + c * ky[k], -dx, -dy, 0.0};
   return 2;
@@ -230,11 +242,9 @@ double RollerContacts::Contact(
   // Damping of each contact: a fraction of ITS critical value, i.e. with the reduced mass of
   // the roller and the counter body (LS-DYNA's viscous contact damping does the same with the
   // slave and master nodal masses); for the outer race, its effective contact mass.
-  const double m_counter = body == Counter::kOuterRace ? race_mass_
-                           : body == Counter::kShaft   ? shaft_mass_
-                                                       : cage_mass_;
-  const double m = 1.0 / (1.0 / roller_mass_[j] + 1.0 / m_counter);
-  const double m_t = 1.0 / (3.0 / roller_mass_[j] + 1.0 / m_counter);
+  const int counter = static_cast<int>(body);
+  const double m = reduced_mass_[3 * j + counter];
+  const double m_t = reduced_mass_t_[3 * j + counter];
   double q[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0;
   double tx = -pts[0].ny, ty = pts[0].nx;
   for (int k = 0; k < npts; ++k) {
@@ -293,19 +303,30 @@ void RollerContacts::RaceContacts(int j, const RollerProfile& prof, double scale
   // Outer race. A profile point is a circle of radius rad around a centre q (the roller's
   // circle, or a rim fillet: its centre and radius, a corner with radius 0); the race gives its
   // gap and the normal of the deformed race.
+  // Every profile point lies inside the roller's circle: a race the circle does not reach
+  // (by more than rounding) has no contact, and its stick spring is released as in Contact.
   const double rho = prof.edge_radius;
-  int n = RacePoints(j, 0, prof, pts);
-  double qx[2], qy[2], rad[2];
-  if (n == 1) {
-    RollerCentre(j, &qx[0], &qy[0]);
-    rad[0] = prof.radius;
+  const double cx = centre_x_[j], cy = centre_y_[j];
+  if (race_->MayTouch(cx, cy, prof.radius + kReachMargin)) {
+    int n = RacePoints(j, 0, prof, pts);
+    double qx[2], qy[2], rad[2];
+    if (n == 1) {
+      qx[0] = cx, qy[0] = cy;
+      rad[0] = prof.radius;
+    } else {
+      for (int k = 0; k < 2; ++k) qx[k] = pts[k].px, qy[k] = pts[k].py, rad[k] = rho;
+    }
+    for (int k = 0; k < n; ++k) race_->Gap(qx[k], qy[k], rad[k], &pts[k]);
+    outer_force_[j] += Contact(j, Counter::kOuterRace, true, pts, n, &friction_[slot], scale);
   } else {
-    for (int k = 0; k < 2; ++k) qx[k] = pts[k].px, qy[k] = pts[k].py, rad[k] = rho;
+    friction_[slot] = 0.0;
   }
-  for (int k = 0; k < n; ++k) race_->Gap(qx[k], qy[k], rad[k], &pts[k]);
-  outer_force_[j] += Contact(j, Counter::kOuterRace, true, pts, n, &friction_[slot], scale);
   // Inner race (rigid ring on the shaft).
-  n = RacePoints(j, 1, prof, pts);
+  if (inner_radius_ - std::hypot(shaft_.x - cx, shaft_.y - cy) + prof.radius < -kReachMargin) {
+    friction_[slot + 1] = 0.0;
+    return;
+  }
+  const int n = RacePoints(j, 1, prof, pts);
   for (int k = 0; k < n; ++k) {
     const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y, d = std::hypot(ex, ey);
     if (n == 2) {  // rim edge: normal through the fillet centre, surface point rho closer
@@ -322,36 +343,50 @@ void RollerContacts::RaceContacts(int j, const RollerProfile& prof, double scale
 void RollerContacts::CageContacts(int j) {
   const double f = spall_fraction_[j];
   // Cage pocket walls: straight lines +-W/2 from the pocket's centre line.
-  double cx, cy;
-  RollerCentre(j, &cx, &cy);
+  const double cx = centre_x_[j], cy = centre_y_[j];
   const double psi = pocket_angle_[j] + cage_.angle;
-  const double twx = -std::sin(psi), twy = std::cos(psi);
+  const double ex = std::cos(psi), ey = std::sin(psi);
+  const double twx = -ey, twy = ex;
   const double lateral = (cx - cage_.x) * twx + (cy - cage_.y) * twy;
-  const double a_lead = psi + 0.5 * kPi - rollers_[j].angle;
   // The force acts at the profile's extreme point towards the wall (a rim edge when the spall
   // faces it), so that its torque matches the gap's dependence on the roller's angle. The
-  // intact part of a partial-length spall reaches further than the notched part.
-  double lx, ly, kx, ky;
+  // intact part of a partial-length spall reaches further than the notched part. Every profile
+  // point is inside the circle: a wall the circle does not reach has no contact.
   const RollerProfile& wall_prof = f < 1.0 ? intact_profiles_[j] : profiles_[j];
-  const double h_lead = wall_prof.SupportPoint(a_lead, &lx, &ly);
-  const double h_trail = wall_prof.SupportPoint(a_lead + kPi, &kx, &ky);
-  const double rc = std::cos(rollers_[j].angle), rs = std::sin(rollers_[j].angle);
-  RacePoint lead{cx + rc * lx - rs * ly,
-                 cy + rs * lx + rc * ly,
-                 -twx,
-                 -twy,
-                 lateral + h_lead - pocket_half_width_};
-  RacePoint trail{cx + rc * kx - rs * ky,
-                  cy + rs * kx + rc * ky,
-                  twx,
-                  twy,
-                  -lateral + h_trail - pocket_half_width_};
-  cage_force_[j] = Contact(j, Counter::kCage, false, &lead, 1, &friction_[kFrictionSlots * j + 2]) +
-                   Contact(j, Counter::kCage, false, &trail, 1, &friction_[kFrictionSlots * j + 3]);
+  const double reach = wall_prof.radius - pocket_half_width_ + kReachMargin;
+  const double a_lead = psi + 0.5 * kPi - rollers_[j].angle;
+  const double rc = cos_[j], rs = sin_[j];
+  double* lead_spring = &friction_[kFrictionSlots * j + 2];
+  double* trail_spring = &friction_[kFrictionSlots * j + 3];
+  double q_lead = 0.0, q_trail = 0.0;
+  if (lateral + reach > 0) {
+    double lx, ly;
+    const double h_lead = wall_prof.SupportPoint(a_lead, &lx, &ly);
+    RacePoint lead{cx + rc * lx - rs * ly,
+                   cy + rs * lx + rc * ly,
+                   -twx,
+                   -twy,
+                   lateral + h_lead - pocket_half_width_};
+    q_lead = Contact(j, Counter::kCage, false, &lead, 1, lead_spring);
+  } else {
+    *lead_spring = 0.0;
+  }
+  if (-lateral + reach > 0) {
+    double kx, ky;
+    const double h_trail = wall_prof.SupportPoint(a_lead + kPi, &kx, &ky);
+    RacePoint trail{cx + rc * kx - rs * ky,
+                    cy + rs * kx + rc * ky,
+                    twx,
+                    twy,
+                    -lateral + h_trail - pocket_half_width_};
+    q_trail = Contact(j, Counter::kCage, false, &trail, 1, trail_spring);
+  } else {
+    *trail_spring = 0.0;
+  }
+  cage_force_[j] = q_lead + q_trail;
   // Radial retention (roller-guided cage): the pocket keeps the roller within +-radial_play of
   // the pitch radius of the cage frame, else the cage could drift sideways with the rollers
   // sliding along their orbits (walls alone allow that mode).
-  const double ex = std::cos(psi), ey = std::sin(psi);
   const double radial = (cx - cage_.x) * ex + (cy - cage_.y) * ey - pitch_radius_;
   const double q_signed = cage_guide_.RadialForce(radial, &step_potential_);  // along e
   if (q_signed != 0.0) {
@@ -374,6 +409,12 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
   std::fill(fy_.begin(), fy_.end(), 0.0);
   std::fill(torque_.begin(), torque_.end(), 0.0);
   for (int j = 0; j < num_rollers(); ++j) {
+    const Body& b = rollers_[j];
+    cos_[j] = std::cos(b.angle), sin_[j] = std::sin(b.angle);
+    centre_x_[j] = b.x - (cos_[j] * centroid_x_[j] - sin_[j] * centroid_y_[j]);
+    centre_y_[j] = b.y - (sin_[j] * centroid_x_[j] + cos_[j] * centroid_y_[j]);
+  }
+  for (int j = 0; j < num_rollers(); ++j) {
     const double f = spall_fraction_[j];
     outer_force_[j] = inner_force_[j] = 0.0;
     RaceContacts(j, profiles_[j], f, kFrictionSlots * j);
@@ -387,21 +428,33 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
 
 void RollerContacts::Integrate(double t, double dt) {
   const double dt_avg = 0.5 * (dt_prev_ + dt);
-  double kinetic = 0.0;
+  double kinetic = 0.0, centred = 0.0;
+  // 1/2 m v^(n-1/2) . v^(n+1/2): the kinetic energy at t^n that central differences conserve
+  // exactly with linear springs (no first-order oscillation in the step).
+  auto centred_energy = [](const Body& a, const Body& b, double m, double inertia) {
+    return 0.5 * m * (a.vx * b.vx + a.vy * b.vy) + 0.5 * inertia * a.omega * b.omega;
+  };
   for (int j = 0; j < num_rollers(); ++j) {
     Body& b = rollers_[j];
+    const Body old = b;
     b.Advance(fx_[j], fy_[j], torque_[j], roller_mass_[j], roller_inertia_[j], dt_avg, dt);
     kinetic += b.KineticEnergy(roller_mass_[j], roller_inertia_[j]);
+    centred += centred_energy(old, b, roller_mass_[j], roller_inertia_[j]);
   }
+  const Body cage_old = cage_;
   cage_.Advance(cage_fx_, cage_fy_, cage_torque_, cage_mass_, cage_inertia_, dt_avg, dt);
   kinetic += cage_.KineticEnergy(cage_mass_, cage_inertia_);
+  centred += centred_energy(cage_old, cage_, cage_mass_, cage_inertia_);
   const double load = load_(t);
+  const Body shaft_old = shaft_;
   const double vy_old = shaft_.vy;
   shaft_.Translate(shaft_fx_, shaft_fy_ + load, shaft_mass_, dt_avg, dt);
   shaft_.angle = angle_(t + dt);
   shaft_.omega = speed_(t + 0.5 * dt);
   kinetic += shaft_.TranslationalEnergy(shaft_mass_);
+  centred += centred_energy(shaft_old, shaft_, shaft_mass_, 0.0);
   kinetic_ = kinetic;
+  centred_kinetic_ = centred;
   // Load work over the half steps around t^n; drive torque = -(contact torque on the shaft).
   external_work_ += load * dt_avg * 0.5 * (vy_old + shaft_.vy);
   external_work_ += -shaft_torque_ * omega_s_ * dt_avg;

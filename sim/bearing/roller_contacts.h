@@ -76,6 +76,9 @@ class OuterRace {
   virtual void Velocity(double px, double py, double* vx, double* vy) const = 0;
   // Adds a force on the race acting at (px, py).
   virtual void Apply(double px, double py, double fx, double fy) = 0;
+  // False only when a circle (centre, radius) certainly does not touch the race (a cheap
+  // bound that lets the rollers skip the contact).
+  virtual bool MayTouch(double /*cx*/, double /*cy*/, double /*radius*/) const { return true; }
 };
 
 class RollerContacts {
@@ -100,6 +103,14 @@ class RollerContacts {
   double StoredEnergy() const { return potential_ + kinetic_; }
   double DissipatedEnergy() const { return friction_work_ + damping_work_; }
   double ExternalWork() const { return external_work_; }
+  // The same terms apart: rigid bodies' kinetic energy (at v^(n+1/2)), contact potentials (at
+  // x^n), friction and contact damping work.
+  double KineticEnergy() const { return kinetic_; }
+  // The same at t^n, 1/2 m v^(n-1/2) . v^(n+1/2) (not checkpointed: valid after a step).
+  double CentredKineticEnergy() const { return centred_kinetic_; }
+  double ContactEnergy() const { return potential_; }
+  double FrictionWork() const { return friction_work_; }
+  double DampingWork() const { return damping_work_; }
   std::string SaveState() const;
   void LoadState(const std::string& bytes);  // throws InputError on a size mismatch
 
@@ -119,6 +130,9 @@ class RollerContacts {
   // Contact stable steps (s, before the safety factor 0.8): roller side and ring side.
   double roller_time_step() const { return roller_dt_; }
   double ring_time_step() const { return ring_dt_; }
+  // Normal tangent stiffness of one Palmgren contact at twice the radial load (N/m): the bound
+  // the stable steps are computed with.
+  double bound_normal_stiffness() const { return bound_normal_stiffness_; }
   // Circle centre of roller j (world).
   void RollerCentre(int j, double* x, double* y) const;
   // Normal contact force magnitudes on roller j at the last step (N, whole section).
@@ -167,7 +181,8 @@ class RollerContacts {
   std::vector<double> pocket_angle_;  // pocket j centre line in the cage frame
   double cage_mass_ = 0, cage_inertia_ = 0, shaft_mass_ = 0, race_mass_ = 0;
   double pocket_half_width_ = 0, pitch_radius_ = 0, inner_radius_ = 0;
-  double k_c_ = 0, dt_limit_ = 0, roller_dt_ = 0, ring_dt_ = 0;
+  double k_c_ = 0, dt_limit_ = 0, roller_dt_ = 0, ring_dt_ = 0, bound_normal_stiffness_ = 0;
+  std::vector<double> reduced_mass_, reduced_mass_t_;  // per (roller, Counter)
 
   // State (checkpointed).
   std::vector<Body> rollers_;
@@ -180,10 +195,12 @@ class RollerContacts {
 
   // Per step.
   OuterRace* race_ = nullptr;
-  double dt_ = 0, omega_s_ = 0, step_potential_ = 0;
+  double dt_ = 0, omega_s_ = 0, step_potential_ = 0, centred_kinetic_ = 0;
   double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
          cage_torque_ = 0;
   std::vector<double> fx_, fy_, torque_;  // per roller
+  // Per roller at x^n: cos and sin of its angle, circle centre.
+  std::vector<double> cos_, sin_, centre_x_, centre_y_;
 };
 
 }  // namespace spallkit::sim

@@ -388,7 +388,7 @@ void ReadModel(Section s,
                const SceneGeometry& g,
                const std::vector<Defect>& defects,
                SceneModel* model) {
-  model->fidelity = Choice(s, "fidelity", "fe", {"fe", "hybrid"});
+  model->fidelity = Choice(s, "fidelity", "fe", {"fe", "hybrid", "lumped", "auto"});
   model->adapter = Choice(s, "adapter", "elastic", {"elastic", "rigid"});
   model->race_contact = Choice(s, "race_contact", "smooth", {"faceted", "curved", "smooth"});
   // The FE section is 2-D: a spall runs through its whole thickness.
@@ -462,6 +462,13 @@ void ReadRun(Section s, SceneRun* run, std::vector<std::string>* outputs) {
       for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
       s.Fail("outputs", "unknown output \"" + o + "\" (known: " + list + ")");
     }
+  Section tol = s.Table("tolerance");
+  SceneTolerance& t = run->tolerance;
+  t.f_b = tol.Number("f_b", t.f_b, kPositive);
+  t.f_c = tol.Number("f_c", t.f_c, kPositive);
+  t.cage_slip = tol.Number("cage_slip", t.cage_slip, kPositive);
+  t.roller_load = tol.Number("roller_load", t.roller_load, kPositive);
+  tol.RejectUnknown();
   s.RejectUnknown();
 }
 

@@ -101,16 +101,30 @@ struct Sensor {
   std::vector<std::string> directions;  // subset of {"x", "y"}
 };
 
+// The error a run may have against the finest model ([run.tolerance]; model.fidelity = "auto"
+// picks the cheapest rung whose measured error meets it, sim/bearing/fidelity_choice.h).
+struct SceneTolerance {
+  double f_b = 0.01;          // relative error of the roller defect frequency
+  double f_c = 0.03;          // relative error of the cage frequency
+  double cage_slip = 0.01;    // absolute error of the cage slip ratio
+  double roller_load = 0.15;  // relative error of the largest roller load
+};
+
 struct SceneRun {
   double duration_s = 0.2;
   double output_rate_hz = 20000.0;
+  SceneTolerance tolerance;
 };
 
 // Which model `spall simulate` builds (docs/BEARING_MODEL.md):
 //  - "fe": every part meshed (level 4, the paper's model; sim/bearing/model_builder.h);
 //  - "hybrid": outer ring + adapter meshed, rollers / cage / inner ring rigid bodies with exact
 //    profiles and Palmgren contact (level 3, sim/bearing/hybrid_rollers.h). The mesh keys then
-//    apply to the outer ring and adapter only and need not resolve the spalls.
+//    apply to the outer ring and adapter only and need not resolve the spalls;
+//  - "lumped": the hybrid's rigid parts on a rigid outer ring with the housing's fitted
+//    stiffness (sim/bearing/lumped_model.h); no mesh is stepped;
+//  - "auto": the cheapest of these whose measured error meets [run.tolerance]
+//    (sim/bearing/fidelity_choice.h).
 struct SceneModel {
   std::string fidelity = "fe";
   // "elastic": the adapter is FE (steel, scene materials.adapter); "rigid": every adapter node

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/hdf5.h"
 #include "core/record_io.h"
+#include "sim/bearing/fidelity_choice.h"
 
 namespace spallkit::sim {
 namespace {
@@ -48,7 +49,9 @@ std::string SimulationSummary::BriefReport() const {
 
 Simulation::Simulation(const Scene& scene, SimulationOptions options)
     : options_(std::move(options)) {
-  model_ = std::make_unique<BearingModel>(scene, options_.model);
+  FidelityChoice choice;
+  model_ = MakeBearingModel(WithChosenFidelity(scene, &choice), options_.model);
+  fidelity_reason_ = choice.reason;
   RecorderOptions ro;
   ro.output_rate_hz = scene.run.output_rate_hz;
   ro.duration_s = scene.run.duration_s;
@@ -56,7 +59,7 @@ Simulation::Simulation(const Scene& scene, SimulationOptions options)
   ro.fine_factor = options_.fine_factor;
   recorder_ = std::make_unique<Recorder>(*model_, ro);
   Recorder* rec = recorder_.get();
-  model_->solver().SetOutputCallback([rec](const solver::ExplicitSolver& s) { rec->Observe(s); });
+  model_->SetObserver([rec] { rec->Observe(); });
   if (options_.checkpoint_path.empty() && !options_.output_path.empty())
     options_.checkpoint_path = options_.output_path + ".ckpt";
 }
@@ -65,7 +68,7 @@ void Simulation::SaveCheckpoint(const std::string& path) const {
   CheckpointWriter out;
   for (char c : kMagic) out.Put(c);
   out.PutBytes(model_->scene().effective_toml);
-  out.PutBytes(model_->solver().SaveState());
+  out.PutBytes(model_->SaveState());
   out.PutBytes(recorder_->SaveState());
   WriteFileAtomically(path, out.bytes());
 }
@@ -77,10 +80,10 @@ void Simulation::LoadCheckpoint(const std::string& path) {
   CheckpointReader in(std::string_view(s).substr(sizeof kMagic), path + ": checkpoint");
   if (in.GetBytes() != model_->scene().effective_toml)
     throw InputError(path + ": checkpoint was written for a different scene (or --set values)");
-  const std::string solver_blob = in.GetBytes();
+  const std::string model_blob = in.GetBytes();
   const std::string recorder_blob = in.GetBytes();
   try {
-    model_->solver().LoadState(solver_blob);
+    model_->LoadState(model_blob);
     recorder_->LoadState(recorder_blob);
   } catch (const InputError& e) {
     throw InputError(path + ": " + e.what());
@@ -89,7 +92,7 @@ void Simulation::LoadCheckpoint(const std::string& path) {
 
 SimulationSummary Simulation::Run() {
   const Scene& scene = model_->scene();
-  solver::ExplicitSolver& solver = model_->solver();
+  BearingModel& model = *model_;
   const double duration = scene.run.duration_s;
   const double ci = scene.solver.checkpoint_interval_s;
   SimulationSummary sum;
@@ -99,36 +102,36 @@ SimulationSummary Simulation::Run() {
   if (options_.resume) {
     LoadCheckpoint(options_.checkpoint_path);
     sum.resumed = true;
-    sum.resumed_from_s = solver.time();
+    sum.resumed_from_s = model.time();
   }
   const double progress_dt =
       options_.progress_interval_s > 0 ? options_.progress_interval_s : duration / 200.0;
   sum.min_time_step = std::numeric_limits<double>::infinity();
-  const long first_step = solver.step();
-  const double start_time = solver.time();
-  double next_ckpt = ci > 0 ? (std::floor(solver.time() / ci + 1e-12) + 1.0) * ci
+  const long first_step = model.step();
+  const double start_time = model.time();
+  double next_ckpt = ci > 0 ? (std::floor(model.time() / ci + 1e-12) + 1.0) * ci
                             : std::numeric_limits<double>::infinity();
   const auto t0 = std::chrono::steady_clock::now();
   bool stopped = false;
-  while (solver.time() < duration) {
-    const double next_progress = (std::floor(solver.time() / progress_dt) + 1.0) * progress_dt;
+  while (model.time() < duration) {
+    const double next_progress = (std::floor(model.time() / progress_dt) + 1.0) * progress_dt;
     const double target = std::min({duration, next_ckpt, next_progress, options_.stop_after_s});
-    const solver::SolverSummary s = solver.Run(target);
+    const solver::SolverSummary s = model.Run(target);
     if (s.steps > 0) {
       sum.min_time_step = std::min(sum.min_time_step, s.min_time_step);
       sum.max_time_step = std::max(sum.max_time_step, s.max_time_step);
     }
     sum.threads = s.threads;
     CheckEnergyBalance();
-    const bool stop_now = solver.time() >= options_.stop_after_s && solver.time() < duration;
-    if (solver.time() >= next_ckpt || stop_now) {
-      if (solver.time() < duration) SaveCheckpoint(options_.checkpoint_path);
-      while (next_ckpt <= solver.time()) next_ckpt += ci;
+    const bool stop_now = model.time() >= options_.stop_after_s && model.time() < duration;
+    if (model.time() >= next_ckpt || stop_now) {
+      if (model.time() < duration) SaveCheckpoint(options_.checkpoint_path);
+      while (next_ckpt <= model.time()) next_ckpt += ci;
     }
     if (options_.progress) {
       SimulationProgress p;
-      p.time = solver.time(), p.duration = duration, p.steps = solver.step();
-      p.time_step = solver.time_step();
+      p.time = model.time(), p.duration = duration, p.steps = model.step();
+      p.time_step = model.time_step();
       p.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       p.start_time = start_time;
       options_.progress(p);
@@ -139,18 +142,18 @@ SimulationSummary Simulation::Run() {
     }
   }
   sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  sum.time = solver.time();
-  sum.steps = solver.step();
-  sum.steps_this_run = solver.step() - first_step;
-  if (sum.steps_this_run == 0) sum.min_time_step = sum.max_time_step = solver.time_step();
-  sum.elements = model_->bearing_mesh().mesh.num_elements();
-  sum.nodes = model_->bearing_mesh().mesh.num_nodes();
-  if (sum.steps_this_run > 0)
+  sum.time = model.time();
+  sum.steps = model.step();
+  sum.steps_this_run = model.step() - first_step;
+  if (sum.steps_this_run == 0) sum.min_time_step = sum.max_time_step = model.time_step();
+  sum.elements = model_->num_elements();
+  sum.nodes = model_->num_nodes();
+  if (sum.steps_this_run > 0 && sum.elements > 0)
     sum.ns_per_element_cycle =
         1e9 * sum.wall_seconds / (static_cast<double>(sum.steps_this_run) * sum.elements);
-  sum.energies = solver.energies();
+  sum.energies = model.energies();
   sum.energy_balance_error = sum.energies.BalanceError();
-  sum.ledger = solver.ContributorLedgers();
+  sum.ledger = model.ContributorLedgers();
   sum.hourglass_to_internal =
       sum.energies.internal > 0 ? sum.energies.hourglass / sum.energies.internal : 0.0;
   if (const Recorder::Series* w = recorder_->Find("/cage/omega")) {
@@ -182,17 +185,17 @@ SimulationSummary Simulation::Run() {
 void Simulation::CheckEnergyBalance() const {
   const double limit = model_->scene().solver.max_energy_error_percent;
   if (limit <= 0.0) return;
-  const solver::Energies e = model_->solver().energies();
+  const solver::Energies e = model_->energies();
   const double error = 100.0 * e.BalanceError();
   if (e.Scale() < 1e-3 || error <= limit) return;
   std::ostringstream os;
   os.precision(3);
-  os << "simulate: energy balance error " << error << " % at t = " << 1e3 * model_->solver().time()
+  os << "simulate: energy balance error " << error << " % at t = " << 1e3 * model_->time()
      << " ms exceeds solver.max_energy_error_percent = " << limit
      << "; the results would not be trustworthy and were not written (spall simulate "
         "--energy-ledger names the contact pair or constraint that breaks the balance)";
   // With the work ledger: name the contributor whose books are furthest off.
-  const std::vector<solver::ContributorLedger> ledger = model_->solver().ContributorLedgers();
+  const std::vector<solver::ContributorLedger> ledger = model_->ContributorLedgers();
   const auto worst =
       std::max_element(ledger.begin(), ledger.end(), [](const auto& a, const auto& b) {
         return std::abs(a.Created()) < std::abs(b.Created());
@@ -211,6 +214,8 @@ void Simulation::WriteOutputs(const SimulationSummary& summary) const {
       f.SetAttribute("/", "scene", model_->scene().effective_toml);
       f.SetAttribute("/", "mesh_quality", model_->mesh_quality().Report());
       f.SetAttribute("/", "steps", static_cast<double>(summary.steps));
+      f.SetAttribute("/", "fidelity", std::string(FidelityName(model_->fidelity())));
+      f.SetAttribute("/", "fidelity_reason", fidelity_reason_);
       f.SetAttribute("/", "energy_balance_error", summary.energy_balance_error);
       recorder_->Write(&f);
       f.Close();

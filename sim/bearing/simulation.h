@@ -15,7 +15,7 @@
 #include <memory>
 #include <string>
 
-#include "sim/bearing/model_builder.h"
+#include "sim/bearing/bearing_model.h"
 #include "sim/bearing/recorder.h"
 #include "sim/bearing/scene.h"
 
@@ -73,6 +73,9 @@ class Simulation {
   const BearingModel& model() const { return *model_; }
   BearingModel& model() { return *model_; }
   const Recorder& recorder() const { return *recorder_; }
+  // Which fidelity runs and why (model.fidelity = "auto" resolved by ChooseFidelity); one line,
+  // also stored in the HDF5 file (attributes "fidelity", "fidelity_reason").
+  const std::string& fidelity_reason() const { return fidelity_reason_; }
 
  private:
   void SaveCheckpoint(const std::string& path) const;
@@ -83,6 +86,7 @@ class Simulation {
   SimulationOptions options_;
   std::unique_ptr<BearingModel> model_;
   std::unique_ptr<Recorder> recorder_;
+  std::string fidelity_reason_;
 };
 
 }  // namespace spallkit::sim

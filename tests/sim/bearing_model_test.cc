@@ -24,7 +24,7 @@ std::string Scene0() {
 // paper's 0.01 on this mesh, the smooth and curved ones roll), plus `extra` overrides.
 // What `spall simulate` would warn about for the paper scene with these overrides.
 std::vector<std::string> WarningsFor(const std::vector<std::string>& sets) {
-  return BearingModel(LoadScene(Scene0(), sets)).Warnings();
+  return FeBearingModel(LoadScene(Scene0(), sets)).Warnings();
 }
 
 std::vector<std::string> CoarseHealthy(bool rolling, std::vector<std::string> extra) {
@@ -100,7 +100,7 @@ TEST(BearingModelTest, SmoothRaceContactRollsAtThePapersFriction) {
 
 TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
   const Scene scene = LoadScene(Scene0(), CoarseHealthy(false, {}));
-  BearingModel model(scene);
+  FeBearingModel model(scene);
   EXPECT_EQ(model.num_rollers(), 13);
   // Default sensors: top (0, 26 mm) along y and side (26 mm, 0) along x, on outer-ring nodes.
   ASSERT_EQ(model.sensor_channels().size(), 2u);
@@ -120,7 +120,7 @@ TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
 // 28.7 %; docs/BEARING_MODEL.md, "Speed range of the full-FE section"). ~12 s.
 TEST(BearingModelTest, FullFeCageStaysCentredAtSpeed) {
   const std::string scene = std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/width-1.38.toml";
-  BearingModel model(
+  FeBearingModel model(
       LoadScene(scene, CoarseHealthy(true, {"model.fidelity=fe", "solver.threads=1"})));
   double worst = 0.0, omega_sum = 0.0;
   int omega_samples = 0;
@@ -186,7 +186,7 @@ class StaticLoadTest : public ::testing::Test {
   static void SetUpTestSuite() {
     const Scene scene = LoadScene(
         Scene0(), CoarseHealthy(false, {"operation.speed_rpm=0", "operation.load_ramp_s=0.001"}));
-    model_ = new BearingModel(scene);
+    model_ = new FeBearingModel(scene);
     // Average the last millisecond of 3 ms (load ramped over the first).
     const int z = model_->num_rollers();
     q_.assign(z, 0.0);
@@ -208,11 +208,11 @@ class StaticLoadTest : public ::testing::Test {
     sum_fy_ /= n;
   }
   static void TearDownTestSuite() { delete model_; }
-  static BearingModel* model_;
+  static FeBearingModel* model_;
   static std::vector<double> q_;
   static double sum_fy_;
 };
-BearingModel* StaticLoadTest::model_ = nullptr;
+FeBearingModel* StaticLoadTest::model_ = nullptr;
 std::vector<double> StaticLoadTest::q_;
 double StaticLoadTest::sum_fy_ = 0.0;
 
@@ -262,7 +262,7 @@ TEST(HarrisJonesTest, FullFeLoadZoneWithinTenPercentOnARigidHousing) {
                                  "operation.speed_rpm=0",
                                  "operation.load_ramp_s=0.001",
                                  "solver.threads=2"});
-  BearingModel model(scene);
+  FeBearingModel model(scene);
   const int z = model.num_rollers();
   std::vector<double> q(z, 0.0);
   int n = 0;

@@ -112,7 +112,7 @@ std::vector<double> StaticOuterForces(const std::vector<std::string>& extra, dou
                                    "operation.load_ramp_s=0.003",
                                    "defects=[]"};
   sets.insert(sets.end(), extra.begin(), extra.end());
-  BearingModel model(LoadScene(SceneFile(), sets));
+  FeBearingModel model(LoadScene(SceneFile(), sets));
   solver::ExplicitSolver& s = model.solver();
   s.Run(0.005);
   const int z = model.num_rollers();
@@ -228,7 +228,7 @@ TEST(HybridVerificationTest, SteelRingOnRigidAdapterLoadZone) {
 // a through-length spall traps the rigid roller (docs/BEARING_MODEL.md, "Spall trapping"), the
 // intact half keeps it rolling: spin within 3 % of the healthy rollers' (6000 rpm, 40 ms).
 TEST(HybridVerificationTest, HalfLengthSpallKeepsRollingAtThePapersFriction) {
-  BearingModel model(LoadScene(SceneFile(),
+  FeBearingModel model(LoadScene(SceneFile(),
                                {"model.fidelity=hybrid",
                                 "mesh.size_mm=2.0",
                                 "operation.speed_rpm=6000",
@@ -265,7 +265,7 @@ TEST(HybridVerificationTest, HalfLengthSpallKeepsRollingAtThePapersFriction) {
 // the deformed raceway's normal (grad delta), else ~0.04 J leak out unaccounted while the dent
 // moves (a balance error of ~19 % here) and healthy runs hide it.
 TEST(HybridVerificationTest, EnergyIsBalancedWithASpallAtThePapersFriction) {
-  BearingModel model(LoadScene(SceneFile(), {"model.fidelity=hybrid", "mesh.size_mm=2.0"}));
+  FeBearingModel model(LoadScene(SceneFile(), {"model.fidelity=hybrid", "mesh.size_mm=2.0"}));
   solver::ExplicitSolver& s = model.solver();
   double worst = 0.0;
   while (s.time() < 0.03) {
@@ -308,7 +308,7 @@ TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARa
   // energy (14 mJ at 6000 rpm) is below the ~23 mJ needed to re-load the contacts
   // (docs/BEARING_MODEL.md, "The hybrid model").
   constexpr int kDefective = 10;
-  BearingModel model(LoadScene(
+  FeBearingModel model(LoadScene(
       SceneFile(), SpallDropRun(kDefective, {"model.fidelity=hybrid", "mesh.size_mm=2.0"})));
   const RollerContacts& h = model.hybrid_rollers()->rollers();
   const double alpha = h.profile(kDefective).HalfAngle();
@@ -380,7 +380,7 @@ TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARa
 // in the load zone, 8.55 .. 8.85 ms apart, none on the healthy rollers. ~35 s.
 TEST(FullFeVerificationTest, DefectiveRollerForceDropsToZeroEveryHalfTurnInTheLoadZone) {
   constexpr int kDefective = 11;
-  BearingModel model(LoadScene(SceneFile(),
+  FeBearingModel model(LoadScene(SceneFile(),
                                SpallDropRun(kDefective,
                                             {"mesh.size_mm=1.0",
                                              "mesh.contact_size_mm=0.5",
@@ -424,7 +424,7 @@ TEST(FullFeVerificationTest, DefectiveRollerForceDropsToZeroEveryHalfTurnInTheLo
   ASSERT_GE(drop_times.size(), 3u);  // the zone (+-40 deg) spans 5.3 ms, three half turns
   EXPECT_GT(healthy_checks, 100);
   // The spall's passages keep the energy books (the spline contact on this spalled 0.5 mm rim
-  // handed over to its corners' node contact with a jump: see BearingModel::KeepsArcsOnItsSpall).
+  // handed over to its corners' node contact with a jump: see FeBearingModel::KeepsArcsOnItsSpall).
   const double balance = model.solver().energies().BalanceError();
   std::printf("energy balance error %.4f %%\n", 100 * balance);
   EXPECT_LT(balance, 1e-3);

@@ -1,0 +1,82 @@
+#include "sim/bearing/bearing_model.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "sim/bearing/lumped_model.h"
+#include "sim/bearing/model_builder.h"
+
+namespace spallkit::sim {
+
+const char* FidelityName(Fidelity fidelity) {
+  switch (fidelity) {
+    case Fidelity::kFe:
+      return "fe";
+    case Fidelity::kHybrid:
+      return "hybrid";
+    case Fidelity::kLumped:
+      return "lumped";
+  }
+  return "?";
+}
+
+bool ParseFidelity(const std::string& name, Fidelity* fidelity) {
+  for (Fidelity f : {Fidelity::kFe, Fidelity::kHybrid, Fidelity::kLumped})
+    if (name == FidelityName(f)) {
+      *fidelity = f;
+      return true;
+    }
+  return false;
+}
+
+bool LumpedOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!(fit_mesh_size_m > 0)) return fail("lumped model: fit_mesh_size_m must be > 0");
+  if (!(fit_duration_s > 0)) return fail("lumped model: fit_duration_s must be > 0");
+  if (!(fit_damping_ratio > 0)) return fail("lumped model: fit_damping_ratio must be > 0");
+  if (!(time_step_safety > 0 && time_step_safety <= 1))
+    return fail("lumped model: time_step_safety must be in (0, 1]");
+  return true;
+}
+
+bool BearingModelOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!(race_penalty_scale > 0)) return fail("bearing model: race_penalty_scale must be > 0");
+  if (!(cage_penalty_scale > 0)) return fail("bearing model: cage_penalty_scale must be > 0");
+  if (!(contact_damping_ratio >= 0 && contact_damping_ratio <= 1))
+    return fail("bearing model: contact_damping_ratio must be in [0, 1]");
+  if (!lumped.IsValid(error)) return false;
+  return cage_guide.IsValid(error);
+}
+
+BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& options)
+    : scene_(scene), options_(options) {
+  std::string err;
+  if (!options_.IsValid(&err)) throw InputError(err);
+  speed_ = solver::RampedSpeed(scene_.operation.inner_ring_speed_rad_s, scene_.operation.ramp_s);
+}
+
+double BearingModel::TheoreticalCageSpeed(double t) const {
+  const BearingGeometry& b = scene_.geometry.bearing;
+  const double gamma = b.element_diameter_m * std::cos(b.contact_angle_rad) / b.pitch_diameter_m;
+  return 0.5 * speed_(t) * (1.0 - gamma);
+}
+
+std::unique_ptr<BearingModel> MakeBearingModel(const Scene& scene,
+                                               const BearingModelOptions& options) {
+  Fidelity f;
+  if (!ParseFidelity(scene.model.fidelity, &f))
+    throw InputError(scene.source + ": model.fidelity: \"" + scene.model.fidelity +
+                     "\" must be resolved to \"fe\", \"hybrid\" or \"lumped\" before a model is "
+                     "built (ChooseFidelity)");
+  if (f == Fidelity::kLumped) return std::make_unique<LumpedBearingModel>(scene, options);
+  return std::make_unique<FeBearingModel>(scene, options);
+}
+
+}  // namespace spallkit::sim

@@ -1,0 +1,43 @@
+// model.fidelity = "auto": the cheapest rung of the fidelity ladder whose measured error meets
+// what the scene asks for (DESIGN.md "Fidelity ladder"; docs/PERFORMANCE.md "Fidelity ladder").
+//
+// The needs of a scene: its [run.tolerance] (errors allowed on f_b, f_c, the cage slip and the
+// largest roller load) and its [run] outputs (every output today is made by every rung: contact
+// forces, acceleration, cage, rollers, energy). The rungs' errors are the bounds `spall bench
+// ladder` measured against the finest model (MeasuredRungErrors); a rung is chosen when each of
+// its bounds is within the tolerance, cheapest first: lumped, hybrid, fe.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sim/bearing/bearing_model.h"
+#include "sim/bearing/scene.h"
+
+namespace spallkit::sim {
+
+// Largest error of a rung over the ladder's scenes against the finest model, as fractions
+// (cage_slip: absolute difference of the slip ratio), and its cost.
+struct RungErrors {
+  Fidelity fidelity = Fidelity::kFe;
+  double f_b = 0, f_c = 0, cage_slip = 0, roller_load = 0;
+  double wall_s_per_simulated_s = 0;  // one thread, paper scene, 1200 rpm
+};
+
+// The ladder's measured bounds, cheapest rung first (the command that reproduces them is in
+// docs/PERFORMANCE.md).
+const std::vector<RungErrors>& MeasuredRungErrors();
+
+struct FidelityChoice {
+  Fidelity fidelity = Fidelity::kFe;
+  std::string reason;  // one line: which rung and why
+};
+
+// The fidelity the scene runs at: its model.fidelity, or for "auto" the choice above.
+FidelityChoice ChooseFidelity(const Scene& scene);
+
+// The scene with model.fidelity set to ChooseFidelity's choice (effective_toml unchanged: the
+// scene file still says "auto").
+Scene WithChosenFidelity(const Scene& scene, FidelityChoice* choice = nullptr);
+
+}  // namespace spallkit::sim

@@ -1,0 +1,384 @@
+#include "sim/bearing/lumped_model.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include "core/checkpoint_io.h"
+#include "core/constants.h"
+#include "core/error.h"
+#include "sim/bearing/model_builder.h"
+#include "sim/bearing/raceway_kernel.h"
+
+namespace spallkit::sim {
+namespace {
+
+// The scene whose housing is fitted: the hybrid model's housing mesh at the fit's size.
+Scene FitScene(const Scene& scene, const LumpedOptions& options) {
+  Scene s = scene;
+  s.model.fidelity = "hybrid";
+  s.mesh.size_m = s.mesh.contact_size_m = options.fit_mesh_size_m;
+  s.mesh.adapter_size_m = std::max(s.mesh.adapter_size_m, 0.5 * options.fit_mesh_size_m);
+  s.defects.clear();
+  return s;
+}
+
+std::string CacheKey(const Scene& scene, const LumpedOptions& o) {
+  std::ostringstream os;
+  os.precision(17);
+  const SceneGeometry& g = scene.geometry;
+  const BearingGeometry& b = g.bearing;
+  os << b.num_elements << ' ' << b.element_diameter_m << ' ' << b.pitch_diameter_m << ' '
+     << b.contact_angle_rad << ' ' << g.thickness_m << ' ' << g.ring_width_m << ' '
+     << g.diametral_clearance_m << ' ' << g.outer_ring_outer_diameter_m << ' ' << g.adapter_width_m
+     << ' ' << g.adapter_height_m << ' ' << g.roller_phase_rad << ' '
+     << scene.operation.radial_load_n << ' ' << scene.damping.ratio << ' '
+     << scene.damping.reference_hz << ' ' << scene.mesh.adapter_size_m << ' ' << scene.model.adapter
+     << ' ' << o.fit_mesh_size_m << ' ' << o.fit_duration_s << ' ' << o.fit_damping_ratio;
+  for (const Material* m : {&scene.materials.outer_ring, &scene.materials.adapter})
+    os << ' ' << m->youngs_modulus_pa << ' ' << m->poisson_ratio << ' ' << m->density_kg_m3;
+  for (const Sensor& s : scene.sensors) {
+    os << ' ' << s.name << ' ' << s.x_m << ' ' << s.y_m;
+    for (const std::string& d : s.directions) os << ' ' << d;
+  }
+  return os.str();
+}
+
+// Stribeck roller loads on the raceway: Q_j ~ cos^(10/9) of the angle from the load line, over
+// the loaded half, scaled so that they add up to `load` along it.
+class RacewayLoad : public solver::ForceContributor {
+ public:
+  RacewayLoad(const RacewayKernel& kernel,
+              const std::vector<double>& angles,
+              double load_angle,
+              double load,
+              double ramp_s)
+      : kernel_(kernel), angles_(angles), ramp_(ramp_s) {
+    double sum = 0.0;
+    for (double th : angles_) {
+      const double c = std::cos(th - load_angle);
+      q_.push_back(c > 0 ? std::pow(c, 10.0 / 9.0) : 0.0);
+      sum += q_.back() * std::max(0.0, c);
+    }
+    for (double& q : q_) q *= load / sum;
+  }
+  void AddForces(fe::NodalState& state, double t, double /*dt*/) override {
+    const double s = std::min(1.0, t / ramp_);
+    const double r = s * s * (3.0 - 2.0 * s);  // smooth ramp
+    for (size_t j = 0; j < angles_.size(); ++j)
+      if (q_[j] > 0)
+        kernel_.Spread(
+            state, angles_[j], r * q_[j] * std::cos(angles_[j]), r * q_[j] * std::sin(angles_[j]));
+  }
+  std::string Name() const override { return "raceway_load"; }
+  // Load-weighted radial approach of the raceway (m): the rigid-ring equivalent displacement.
+  double Approach(const fe::NodalState& s, double load) const {
+    double w = 0.0;
+    for (size_t j = 0; j < angles_.size(); ++j) {
+      if (!(q_[j] > 0)) continue;
+      const double r = kernel_.Radius(s, angles_[j]) - kernel_.radius();
+      w += q_[j] * r;
+    }
+    return w / load;
+  }
+
+ private:
+  const RacewayKernel& kernel_;
+  std::vector<double> angles_, q_;
+  double ramp_;
+};
+
+HousingFit ComputeHousingFit(const Scene& scene, const BearingModelOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const LumpedOptions& lo = options.lumped;
+  const Scene fs = FitScene(scene, lo);
+  HousingFit fit;
+  const double load = std::max(scene.operation.radial_load_n, 1000.0);
+  // Case 0: load along +x; case 1: along -y (the scene's load direction).
+  const double load_angle[2] = {0.0, -0.5 * kPi};
+  std::vector<std::vector<double>> channel_disp(2);
+  for (int d = 0; d < 2; ++d) {
+    BearingModelOptions o = options;
+    o.housing_only = true;
+    Scene s = fs;
+    s.damping.ratio = lo.fit_damping_ratio;
+    s.damping.reference_hz = 3000.0;
+    FeBearingModel model(s, o);
+    const BearingMesh& mesh = model.bearing_mesh();
+    RacewayKernel kernel(mesh.mesh,
+                         "outer_ring.raceway",
+                         mesh.outer_raceway_radius_m,
+                         options.hybrid.spread_half_width_m);
+    RacewayLoad pattern(
+        kernel, mesh.roller_angles_rad, load_angle[d], load, 0.25 * lo.fit_duration_s);
+    solver::ExplicitSolver& solver = model.solver();
+    solver.AddContributor(&pattern);
+    solver.Run(0.8 * lo.fit_duration_s);
+    const double c_early = pattern.Approach(solver.state(), load);
+    solver.Run(lo.fit_duration_s);
+    const fe::NodalState& st = solver.state();
+    const double c = pattern.Approach(st, load);
+    if (!(c > 0))
+      throw InputError(
+          "lumped model: the housing fit found no raceway approach under load "
+          "(check the adapter and ring geometry)");
+    fit.residual_motion = std::max(fit.residual_motion, std::abs(c - c_early) / c);
+    // Displacement of a unit rigid-ring motion along d is the direction vector; c is along
+    // the load direction, so the ring moves by c along (cos, sin) of the load angle.
+    double m2 = 0.0;
+    for (size_t i = 0; i < st.size(); ++i) {
+      const double ux = st.x[i] - st.x0[i], uy = st.y[i] - st.y0[i];
+      m2 += st.mass[i] * (ux * ux + uy * uy);
+    }
+    fit.stiffness[d] = load / c;
+    fit.mass[d] = m2 / (c * c);
+    fit.damping[d] = 4.0 * kPi * scene.damping.ratio * scene.damping.reference_hz * fit.mass[d];
+    const double ex = std::cos(load_angle[d]), ey = std::sin(load_angle[d]);
+    for (const SensorChannel& ch : model.sensor_channels()) {
+      const double u =
+          (st.x[ch.node] - st.x0[ch.node]) * ex + (st.y[ch.node] - st.y0[ch.node]) * ey;
+      channel_disp[d].push_back(u / c);
+    }
+  }
+  // Each channel's gain from the load case along its own direction.
+  FeBearingModel probe(fs, [&] {
+    BearingModelOptions o = options;
+    o.housing_only = true;
+    return o;
+  }());
+  const auto& channels = probe.sensor_channels();
+  for (size_t k = 0; k < channels.size(); ++k)
+    fit.sensor_gain.push_back(channel_disp[channels[k].direction == 'x' ? 0 : 1][k]);
+  fit.fit_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return fit;
+}
+
+}  // namespace
+
+double HousingFit::Frequency(int d) const {
+  return std::sqrt(stiffness[d] / mass[d]) / (2.0 * kPi);
+}
+
+HousingFit FitHousing(const Scene& scene, const BearingModelOptions& options) {
+  static std::mutex mutex;
+  static std::map<std::string, HousingFit> cache;
+  const std::string key = CacheKey(scene, options.lumped);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = cache.find(key);
+    if (it != cache.end()) {
+      HousingFit f = it->second;
+      f.fit_wall_s = 0.0;
+      return f;
+    }
+  }
+  HousingFit fit = ComputeHousingFit(scene, options);
+  std::lock_guard<std::mutex> lock(mutex);
+  cache.emplace(key, fit);
+  return fit;
+}
+
+bool RigidOuterRace::MayTouch(double cx, double cy, double radius) const {
+  const double dx = cx - x_, dy = cy - y_, reach = radius_ - radius;
+  return reach < 0 || dx * dx + dy * dy > reach * reach;
+}
+
+void RigidOuterRace::Gap(double qx, double qy, double rad, RacePoint* p) const {
+  const double dx = qx - x_, dy = qy - y_, d = std::sqrt(dx * dx + dy * dy);
+  p->nx = -dx / d, p->ny = -dy / d;
+  p->px = qx - rad * p->nx, p->py = qy - rad * p->ny;
+  p->delta = d + rad - radius_;
+}
+
+LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOptions& options)
+    : BearingModel(scene, options),
+      housing_(MeshBearingHousing(FitScene(scene, options.lumped))),
+      fit_(FitHousing(scene, options)),
+      rollers_(scene,
+               housing_,
+               std::min(fit_.mass[0], fit_.mass[1]),
+               options.hybrid,
+               options.cage_guide),
+      race_(housing_.outer_raceway_radius_m) {
+  std::string err;
+  if (!options.hybrid.IsValid(&err)) throw InputError(err);
+  // Sensor channels in the FE models' order: every scene sensor, each of its directions.
+  for (const Sensor& sensor : scene_.sensors)
+    for (const std::string& dir : sensor.directions)
+      channels_.push_back({sensor.name, dir == "x" ? 'x' : 'y', -1, 0.0});
+  if (channels_.size() != fit_.sensor_gain.size())
+    throw InputError("lumped model: the housing fit has " +
+                     std::to_string(fit_.sensor_gain.size()) + " sensor channels, the scene " +
+                     std::to_string(channels_.size()));
+  // Stable step, 2 / omega (sqrt(1 + zeta^2) - zeta) for every oscillator:
+  //  - a roller: its translation normal to the races carries at most three Palmgren springs
+  //    k_n (two rim edges on one race, one on the other); along the orbit and in rotation the
+  //    stick springs k_t = ratio k_n (two on one race, one on the other) on rim points of a disc
+  //    (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the cage wall k_c on the translation.
+  //    The hybrid's bound 6 (k_n + k_t) / m is the sum of the two, 1.8x in omega^2; the rigid
+  //    ring's mass is large against the roller's, so the ring side does not limit.
+  //  - the ring oscillators, with their damping.
+  {
+    const double kn = rollers_.bound_normal_stiffness();
+    const double kt = options_.hybrid.tangential_stiffness_ratio * kn;
+    double m_min = rollers_.roller_mass(0);
+    for (int j = 0; j < rollers_.num_rollers(); ++j)
+      m_min = std::min(m_min, rollers_.roller_mass(j));
+    const double omega =
+        std::sqrt(std::max(3.0 * kn, 7.0 * kt + options_.hybrid.cage_stiffness_n_per_m) / m_min);
+    const double zeta = options_.hybrid.contact_damping_ratio;
+    dt_stable_ =
+        options_.lumped.time_step_safety * 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta);
+  }
+  for (int d = 0; d < 2; ++d) {
+    const double omega = std::sqrt(fit_.stiffness[d] / fit_.mass[d]);
+    const double zeta = fit_.damping[d] / (2.0 * fit_.mass[d] * omega);
+    dt_stable_ = std::min(
+        dt_stable_,
+        options_.lumped.time_step_safety * 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta));
+  }
+}
+
+void LumpedBearingModel::Step() {
+  const double dt = dt_stable_;
+  race_.fx_ = race_.fy_ = 0.0;
+  rollers_.Step(race_, time_, dt);
+  // Ring: roller reactions, housing spring and damper at x^n, v^(n-1/2).
+  const double dt_avg = 0.5 * (dt_prev_ + dt);
+  double* u[2] = {&race_.x_, &race_.y_};
+  double* v[2] = {&race_.vx_, &race_.vy_};
+  const double f_rollers[2] = {race_.fx_, race_.fy_};
+  for (int d = 0; d < 2; ++d) {
+    const double spring = -fit_.stiffness[d] * *u[d];
+    const double damper = -fit_.damping[d] * *v[d];
+    const double v_old = *v[d];
+    ring_v_old_[d] = v_old;
+    *v[d] += dt_avg * (f_rollers[d] + spring + damper) / fit_.mass[d];
+    // Work of the housing forces over the half steps around t^n (the solver's rule).
+    const double v_mid = 0.5 * (v_old + *v[d]);
+    spring_energy_ -= spring * v_mid * dt_avg;
+    housing_damping_work_ -= damper * v_mid * dt_avg;
+    *u[d] += dt * *v[d];
+  }
+  dt_prev_ = dt;
+  dt_ = dt;
+  time_ += dt;
+  ++step_;
+}
+
+solver::SolverSummary LumpedBearingModel::Run(double end_time) {
+  solver::SolverSummary sum;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!started_) {
+    started_ = true;
+    if (observer_) observer_();
+  }
+  const long first = step_;
+  while (time_ < end_time) {
+    Step();
+    if (observer_) observer_();
+  }
+  sum.steps = step_ - first;
+  sum.time = time_;
+  sum.min_time_step = sum.max_time_step = sum.steps > 0 ? dt_ : 0.0;
+  sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  sum.threads = 1;
+  sum.energies = energies();
+  return sum;
+}
+
+solver::Energies LumpedBearingModel::energies() const {
+  solver::Energies e;
+  e.kinetic = rollers_.CentredKineticEnergy();
+  for (int d = 0; d < 2; ++d)
+    e.kinetic += 0.5 * fit_.mass[d] * ring_v_old_[d] * (d == 0 ? race_.vx_ : race_.vy_);
+  e.internal = spring_energy_;
+  e.contact = rollers_.ContactEnergy();
+  e.friction = rollers_.FrictionWork();
+  e.damping = rollers_.DampingWork() + housing_damping_work_;
+  e.external = e.external_loads = rollers_.ExternalWork();
+  return e;
+}
+
+BodyMotion LumpedBearingModel::RollerMotion(int j) const {
+  const PlanarBody& b = rollers_.roller(j);
+  return {b.x, b.y, b.vx, b.vy, b.omega};
+}
+
+BodyMotion LumpedBearingModel::CageMotion() const {
+  const PlanarBody& b = rollers_.cage();
+  return {b.x, b.y, b.vx, b.vy, b.omega};
+}
+
+BodyMotion LumpedBearingModel::InnerRingMotion() const {
+  const PlanarBody& b = rollers_.shaft();
+  return {b.x, b.y, b.vx, b.vy, speed_(time_)};
+}
+
+double LumpedBearingModel::SensorVelocity(int channel) const {
+  const SensorChannel& ch = channels_[channel];
+  return fit_.sensor_gain[channel] * (ch.direction == 'x' ? race_.vx_ : race_.vy_);
+}
+
+std::string LumpedBearingModel::SaveState() const {
+  CheckpointWriter out;
+  for (double x : {time_,
+                   dt_,
+                   dt_prev_,
+                   spring_energy_,
+                   housing_damping_work_,
+                   race_.x_,
+                   race_.y_,
+                   race_.vx_,
+                   race_.vy_})
+    out.Put(x);
+  out.Put<std::int64_t>(step_);
+  out.Put<std::uint8_t>(started_ ? 1 : 0);
+  out.PutBytes(rollers_.SaveState());
+  return out.Take();
+}
+
+void LumpedBearingModel::LoadState(const std::string& bytes) {
+  CheckpointReader in(bytes, "lumped model state");
+  for (double* x : {&time_,
+                    &dt_,
+                    &dt_prev_,
+                    &spring_energy_,
+                    &housing_damping_work_,
+                    &race_.x_,
+                    &race_.y_,
+                    &race_.vx_,
+                    &race_.vy_})
+    *x = in.Get<double>();
+  step_ = static_cast<long>(in.Get<std::int64_t>());
+  started_ = in.Get<std::uint8_t>() != 0;
+  rollers_.LoadState(in.GetBytes());
+}
+
+std::string LumpedBearingModel::Describe() const {
+  std::ostringstream os;
+  os.precision(4);
+  const RollerContacts& r = rollers_;
+  os << "model: lumped (rigid rollers, cage and inner ring with exact profiles; rigid outer ring "
+        "on the fitted housing): Palmgren K_c = "
+     << r.contact_stiffness() / std::pow(1e3, 10.0 / 9.0) * 1e-3 << " kN/mm^(10/9), roller mass "
+     << r.roller_mass(0) * 1e3 << " g, cage " << r.cage_mass() * 1e3 << " g, inner ring "
+     << r.shaft_mass() * 1e3 << " g; step " << dt_stable_ * 1e9 << " ns";
+  os << "\nhousing fit (" << options_.lumped.fit_mesh_size_m * 1e3 << " mm FE housing, "
+     << (fit_.fit_wall_s > 0 ? "computed in " : "cached");
+  if (fit_.fit_wall_s > 0) os << fit_.fit_wall_s << " s";
+  os << ", residual motion " << fit_.residual_motion * 100 << " %):";
+  for (int d = 0; d < 2; ++d)
+    os << (d == 0 ? " x: " : "; y: ") << fit_.stiffness[d] * 1e-9 << " kN/um, " << fit_.mass[d]
+       << " kg, " << fit_.Frequency(d) << " Hz";
+  for (size_t c = 0; c < channels_.size(); ++c)
+    os << "\nsensor " << channels_[c].sensor << " " << channels_[c].direction << ": gain "
+       << fit_.sensor_gain[c] << " of the ring's motion";
+  return os.str();
+}
+
+}  // namespace spallkit::sim

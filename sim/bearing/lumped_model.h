@@ -1,0 +1,112 @@
+// The lumped bearing model (DESIGN.md "Fidelity ladder", the rung below the hybrid): the
+// hybrid's rigid rollers, cage and inner ring (roller_contacts.h: exact spall profiles, Palmgren
+// line contact, traction, pocket contact) on a RIGID outer ring carried by the housing's
+// stiffness, with the sensors read from that ring through fitted gains. No mesh is stepped, so
+// the time step is the roller contacts' and a simulated second costs about a second of wall
+// time (docs/PERFORMANCE.md, "Fidelity ladder").
+//
+// Housing fit (FitHousing, once per geometry and cached in the process): the scene's FE housing
+// (outer ring tied to the elastic or rigid adapter, the hybrid model's mesh at
+// LumpedOptions::fit_mesh_size_m) is loaded on its raceway by a Stribeck roller-load pattern
+// (Q_j ~ cos^(10/9) psi_j over the loaded half, through the hybrid's raceway kernel) along -y
+// and +x, and relaxed to rest with heavy mass damping. Per direction d:
+//  - stiffness K_d = F / c_d, c_d = sum_j Q_j (u_j . e_j) / F the load-weighted radial approach
+//    of the raceway (the displacement of a rigid ring that does the same work);
+//  - mass M_d = sum_i m_i |u_i|^2 / c_d^2, the Rayleigh mass of the static shape (the housing's
+//    fundamental radial mode in that direction, frequency sqrt(K_d / M_d));
+//  - damping C_d = 4 pi zeta f_ref M_d, the scene's mass-proportional damping on that mass;
+//  - sensor gain g_c = u_c / c_d of each channel in its direction's load case.
+// The ring moves as two independent oscillators (x and y) under the roller reactions; channel c
+// reads g_c times the ring's velocity along its direction. Limits (docs/BEARING_MODEL.md,
+// "The lumped model"): one housing mode per direction (the hybrid's sensor carries many), no
+// local raceway deflection under a roller, no ring rotation.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sim/bearing/bearing_model.h"
+#include "sim/bearing/roller_contacts.h"
+
+namespace spallkit::sim {
+
+struct HousingFit {
+  double stiffness[2] = {0, 0};     // K_x, K_y (N/m)
+  double mass[2] = {0, 0};          // M_x, M_y (kg)
+  double damping[2] = {0, 0};       // C_x, C_y (N s/m)
+  std::vector<double> sensor_gain;  // per sensor channel (scene order)
+  // Relative change of c_d over the last fifth of the relaxation (0: fully at rest).
+  double residual_motion = 0.0;
+  double fit_wall_s = 0.0;        // wall time of the fit (0 when it came from the cache)
+  double Frequency(int d) const;  // sqrt(K_d / M_d) / 2 pi (Hz)
+};
+
+// Fits the housing of `scene` (see above); cached by the scene's housing geometry, materials,
+// damping, adapter, sensors and the options. Throws InputError.
+HousingFit FitHousing(const Scene& scene, const BearingModelOptions& options);
+
+// The outer ring as one rigid circle of the raceway radius, centre (x, y), no rotation.
+class RigidOuterRace : public OuterRace {
+ public:
+  explicit RigidOuterRace(double radius) : radius_(radius) {}
+  void Gap(double qx, double qy, double rad, RacePoint* p) const override;
+  void Velocity(double, double, double* vx, double* vy) const override { *vx = vx_, *vy = vy_; }
+  void Apply(double, double, double fx, double fy) override { fx_ += fx, fy_ += fy; }
+  bool MayTouch(double cx, double cy, double radius) const override;
+
+  double radius_ = 0, x_ = 0, y_ = 0, vx_ = 0, vy_ = 0;
+  double fx_ = 0, fy_ = 0;  // force of the rollers this step
+};
+
+class LumpedBearingModel : public BearingModel {
+ public:
+  // Fits (or takes from the cache) the housing and builds the rigid parts. Throws InputError.
+  explicit LumpedBearingModel(const Scene& scene, const BearingModelOptions& options = {});
+
+  Fidelity fidelity() const override { return Fidelity::kLumped; }
+  solver::SolverSummary Run(double end_time) override;
+  double time() const override { return time_; }
+  long step() const override { return step_; }
+  double time_step() const override { return dt_; }
+  solver::Energies energies() const override;
+  void SetObserver(std::function<void()> observer) override { observer_ = std::move(observer); }
+  std::string SaveState() const override;
+  void LoadState(const std::string& bytes) override;
+
+  double RollerOuterForce(int j) const override { return rollers_.OuterForce(j); }
+  double RollerInnerForce(int j) const override { return rollers_.InnerForce(j); }
+  double RollerCageForce(int j) const override { return rollers_.CageForce(j); }
+  BodyMotion RollerMotion(int j) const override;
+  BodyMotion CageMotion() const override;
+  BodyMotion InnerRingMotion() const override;
+  double SensorVelocity(int channel) const override;
+  const BearingMesh& bearing_mesh() const override { return housing_; }
+  int num_elements() const override { return 0; }
+  int num_nodes() const override { return 0; }
+  std::string Describe() const override;
+
+  const HousingFit& housing() const { return fit_; }
+  const RollerContacts& rollers() const { return rollers_; }
+  // Outer ring centre and its velocity at n-1/2.
+  const RigidOuterRace& outer_ring() const { return race_; }
+  // Stable step (s): the roller contacts' and the ring oscillators'.
+  double stable_time_step() const { return dt_stable_; }
+
+ private:
+  void Step();
+
+  BearingMesh housing_;  // the fit's housing mesh: geometry only, not stepped
+  HousingFit fit_;
+  RollerContacts rollers_;
+  RigidOuterRace race_;
+  std::function<void()> observer_;
+  double dt_stable_ = 0;
+  // State (checkpointed).
+  double time_ = 0, dt_ = 0, dt_prev_ = 0;
+  long step_ = 0;
+  double spring_energy_ = 0, housing_damping_work_ = 0;
+  bool started_ = false;
+  double ring_v_old_[2] = {0, 0};  // ring velocity at n-1/2 of the last step (energy at t^n)
+};
+
+}  // namespace spallkit::sim

@@ -1,0 +1,232 @@
+// The lumped bearing model (sim/bearing/lumped_model.h): the housing fit, the rolling
+// kinematics against pure rolling, the energy books, checkpoint identity and the HDF5 fields.
+#include "sim/bearing/lumped_model.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/constants.h"
+#include "core/error.h"
+#include "core/hdf5.h"
+#include "sim/bearing/fidelity_choice.h"
+#include "sim/bearing/fidelity_ladder.h"
+#include "sim/bearing/scene.h"
+#include "sim/bearing/simulation.h"
+
+namespace spallkit::sim {
+namespace {
+
+std::string SceneFile() {
+  return std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml";
+}
+
+std::string TempPath(const std::string& name) {
+  return ::testing::TempDir() + "spallkit_lumped_" + name;
+}
+
+Scene LumpedScene(std::vector<std::string> sets) {
+  sets.insert(sets.begin(), "model.fidelity=lumped");
+  return LoadScene(SceneFile(), sets);
+}
+
+// The fit is computed once per housing and then served from the cache. An adapter held rigidly
+// leaves only the ring's own compliance: vertically (towards the seat) the ring is much stiffer
+// on it; sideways the upper half of the ring, free above the seat, bends either way.
+TEST(LumpedModelTest, HousingFitIsCachedAndStifferOnARigidAdapter) {
+  const HousingFit a = FitHousing(LumpedScene({}), {});
+  const HousingFit b = FitHousing(LumpedScene({"defects.0.width_mm=0.46"}), {});  // same housing
+  EXPECT_EQ(b.fit_wall_s, 0.0);
+  const HousingFit rigid = FitHousing(LumpedScene({"model.adapter=rigid"}), {});
+  for (int d = 0; d < 2; ++d) {
+    SCOPED_TRACE(d);
+    std::printf("direction %c: K %.4g N/m (rigid adapter %.4g), M %.4g kg, %.0f Hz\n",
+                "xy"[d],
+                a.stiffness[d],
+                rigid.stiffness[d],
+                a.mass[d],
+                a.Frequency(d));
+    EXPECT_EQ(a.stiffness[d], b.stiffness[d]);
+    EXPECT_GT(a.stiffness[d], 0.0);
+    EXPECT_GT(rigid.stiffness[d], (d == 1 ? 1.5 : 1.0) * a.stiffness[d]);
+    EXPECT_GT(a.mass[d], 0.0);
+    EXPECT_LT(a.residual_motion, 1e-3);
+  }
+  ASSERT_EQ(a.sensor_gain.size(), 2u);  // default sensors: top y, side x
+  for (double g : a.sensor_gain) EXPECT_GT(g, 0.0);
+}
+
+// Rollers roll: after the ramp, the healthy rollers' spin relative to the cage is what pure
+// rolling on the inner race gives for the simulated cage speed, (w_s - w_c) (d_m - D) / D, and
+// the cage runs within 1 % of its pure-rolling speed. Friction 0.15 / 0.12, above the spall's
+// tipping threshold w / 4r = 0.106 (docs/BEARING_MODEL.md, "Spall trapping"), so the defective
+// roller rolls through too: its f_b = 2 |w_r - w_c| / 2 pi within 1 % of the healthy ones'.
+TEST(LumpedModelTest, RollersRollAndTheCageFollowsPureRolling) {
+  const Scene scene = LumpedScene({"operation.speed_rpm=6000",
+                                   "operation.ramp_s=0.002",
+                                   "friction.mu_static=0.15",
+                                   "friction.mu_dynamic=0.12",
+                                   "run.duration_s=0.05"});
+  Simulation sim(scene, {});
+  const SimulationSummary s = sim.Run();
+  ASSERT_TRUE(s.completed);
+  EXPECT_LT(std::abs(s.cage_slip_mean), 0.01) << s.BriefReport();
+  const Recorder& rec = sim.recorder();
+  const auto& t = rec.Find("/time")->data;
+  const auto& cage = rec.Find("/cage/omega")->data;
+  const auto& spin = rec.Find("/rollers/spin")->data;
+  const int z = sim.model().num_rollers();
+  const BearingGeometry& g = scene.geometry.bearing;
+  const double ws = scene.operation.inner_ring_speed_rad_s;
+  double rel[2] = {0, 0}, pure = 0;
+  int n = 0;
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < 0.01) continue;
+    rel[0] += std::abs(spin[i * z + 0] - cage[i]);
+    for (int j = 1; j < z; ++j) rel[1] += std::abs(spin[i * z + j] - cage[i]) / (z - 1);
+    pure += (ws - cage[i]) * (g.pitch_diameter_m - g.element_diameter_m) / g.element_diameter_m;
+    ++n;
+  }
+  std::printf(
+      "roller spin relative to the cage: defective %.2f, healthy %.2f, pure rolling %.2f "
+      "rad/s; cage slip %.3f %%\n",
+      rel[0] / n,
+      rel[1] / n,
+      pure / n,
+      100 * s.cage_slip_mean);
+  // Rollers outside the load zone have no traction and lag: the mean is up to 2 % low.
+  EXPECT_NEAR(rel[1] / pure, 1.0, 0.02);
+  EXPECT_NEAR(rel[0] / rel[1], 1.0, 0.01);
+}
+
+// The energy books of the paper's scene (its friction 0.01 / 0.005): rigid bodies' and ring
+// kinetic energy, housing spring, Palmgren potentials, friction and damping against the load
+// and drive work.
+TEST(LumpedModelTest, EnergyIsBalanced) {
+  Simulation sim(LumpedScene({"run.duration_s=0.05"}), {});
+  const SimulationSummary s = sim.Run();
+  ASSERT_TRUE(s.completed);
+  std::printf("%s\n", s.BriefReport().c_str());
+  EXPECT_GT(s.energies.external, 0.1);  // J: the load and the drive did work
+  EXPECT_GT(s.energies.internal, 0.0);  // the housing spring carries the load
+  EXPECT_LT(s.energy_balance_error, 1e-3);
+}
+
+// A run stopped and resumed from its checkpoint writes exactly the uninterrupted run's
+// datasets, and the file says which model made it.
+TEST(LumpedModelTest, ResumedRunIsBitIdenticalAndTheFileNamesTheModel) {
+  const Scene scene = LumpedScene({"operation.speed_rpm=6000",
+                                   "operation.ramp_s=0.001",
+                                   "run.duration_s=0.006",
+                                   "solver.checkpoint_interval_s=0.002"});
+  SimulationOptions a;
+  a.output_path = TempPath("straight.h5");
+  ASSERT_TRUE(Simulation(scene, a).Run().completed);
+  SimulationOptions b;
+  b.output_path = TempPath("resumed.h5");
+  b.stop_after_s = 3.3e-3;
+  EXPECT_FALSE(Simulation(scene, b).Run().completed);
+  b.stop_after_s = std::numeric_limits<double>::infinity();
+  b.resume = true;
+  ASSERT_TRUE(Simulation(scene, b).Run().completed);
+  h5::File fa = h5::File::OpenReadOnly(a.output_path), fb = h5::File::OpenReadOnly(b.output_path);
+  const auto names = fa.ListDatasets();
+  EXPECT_EQ(names, fb.ListDatasets());
+  EXPECT_GE(names.size(), 17u);
+  for (const std::string& p : names) {
+    SCOPED_TRACE(p);
+    const auto va = fa.ReadDataset(p), vb = fb.ReadDataset(p);
+    ASSERT_EQ(va.size(), vb.size());
+    for (size_t i = 0; i < va.size(); ++i)
+      if (!(std::isnan(va[i]) && std::isnan(vb[i]))) {
+        ASSERT_EQ(va[i], vb[i]) << i;
+      }
+  }
+  EXPECT_EQ(fa.ReadStringAttribute("/", "fidelity").value_or(""), "lumped");
+  std::remove(a.output_path.c_str());
+  std::remove(b.output_path.c_str());
+}
+
+// model.fidelity = "auto" takes the cheapest rung whose measured errors meet [run.tolerance]:
+// tolerances looser than the lumped model's measured errors admit it, an f_b tolerance between the
+// lumped and the hybrid errors moves to the hybrid, one tighter than every rung's to the full FE;
+// an explicit fidelity is kept. The choice is printed and written to the HDF5 file.
+TEST(FidelityChoiceTest, AutoPicksTheCheapestRungWithinTheTolerance) {
+  const std::vector<RungErrors>& rungs = MeasuredRungErrors();
+  ASSERT_EQ(rungs.size(), 3u);
+  const RungErrors& lumped = rungs[0];
+  const RungErrors& hybrid = rungs[1];
+  ASSERT_EQ(lumped.fidelity, Fidelity::kLumped);
+  ASSERT_EQ(hybrid.fidelity, Fidelity::kHybrid);
+  auto loose = [&](double f_b) {
+    return std::vector<std::string>{
+        "model.fidelity=auto",
+        "run.tolerance.f_b=" + std::to_string(f_b),
+        "run.tolerance.f_c=" + std::to_string(2 * lumped.f_c),
+        "run.tolerance.cage_slip=" + std::to_string(2 * lumped.cage_slip),
+        "run.tolerance.roller_load=" + std::to_string(2 * lumped.roller_load)};
+  };
+  const FidelityChoice to_lumped = ChooseFidelity(LoadScene(SceneFile(), loose(2 * lumped.f_b)));
+  EXPECT_EQ(to_lumped.fidelity, Fidelity::kLumped) << to_lumped.reason;
+  EXPECT_NE(to_lumped.reason.find("auto -> lumped"), std::string::npos) << to_lumped.reason;
+  if (hybrid.f_b < lumped.f_b) {
+    const double between = 0.5 * (hybrid.f_b + lumped.f_b);
+    EXPECT_EQ(ChooseFidelity(LoadScene(SceneFile(), loose(between))).fidelity, Fidelity::kHybrid);
+  }
+  EXPECT_EQ(ChooseFidelity(
+                LoadScene(SceneFile(), {"model.fidelity=auto", "run.tolerance.cage_slip=1e-9"}))
+                .fidelity,
+            Fidelity::kFe);
+  EXPECT_EQ(ChooseFidelity(LoadScene(SceneFile(), {"model.fidelity=hybrid"})).fidelity,
+            Fidelity::kHybrid);
+
+  SimulationOptions o;
+  o.output_path = TempPath("auto.h5");
+  std::vector<std::string> sets = loose(2 * lumped.f_b);
+  sets.push_back("run.duration_s=0.002");
+  Simulation sim(LoadScene(SceneFile(), sets), o);
+  EXPECT_EQ(sim.model().fidelity(), Fidelity::kLumped);
+  EXPECT_EQ(sim.fidelity_reason(), to_lumped.reason);
+  ASSERT_TRUE(sim.Run().completed);
+  h5::File f = h5::File::OpenReadOnly(o.output_path);
+  EXPECT_EQ(f.ReadStringAttribute("/", "fidelity").value_or(""), "lumped");
+  EXPECT_EQ(f.ReadStringAttribute("/", "fidelity_reason").value_or(""), to_lumped.reason);
+  std::remove(o.output_path.c_str());
+}
+
+// The ladder's books: a rung run twice is deterministic, so against itself every error is exactly
+// 0, while the kinematics it measured are the rolling bearing's (cage near pure rolling); options
+// with fewer than two rungs are refused.
+TEST(FidelityLadderTest, ARungAgainstItselfHasNoErrorAndOptionsAreChecked) {
+  LadderOptions o;
+  o.scenes.emplace_back("paper",
+                        LumpedScene({"operation.speed_rpm=6000", "operation.ramp_s=0.002"}));
+  o.rungs = {{Fidelity::kLumped, 0.0}, {Fidelity::kLumped, 0.0}};
+  o.duration_s = 0.02;
+  const LadderSummary s = RunFidelityLadder(o);
+  ASSERT_EQ(s.runs.size(), 2u);
+  ASSERT_EQ(s.rungs.size(), 2u);
+  for (const LadderRungSummary& r : s.rungs) {
+    EXPECT_EQ(r.f_b, 0.0);
+    EXPECT_EQ(r.f_c, 0.0);
+    EXPECT_EQ(r.cage_slip, 0.0);
+    EXPECT_EQ(r.rms, 0.0);
+    EXPECT_GT(r.wall_s_per_simulated_s, 0.0);
+  }
+  const LadderMetrics& m = s.runs[0].metrics;
+  const BearingGeometry& g = o.scenes[0].second.geometry.bearing;
+  const double fc_pure = 0.5 * 100.0 * (1.0 - g.element_diameter_m / g.pitch_diameter_m);
+  EXPECT_NEAR(m.f_c_hz / fc_pure, 1.0, 0.02);  // after only 20 ms with the 2 ms ramp
+  EXPECT_GT(m.f_b_hz, 0.0);
+  EXPECT_GT(m.harris_jones_load_n, 0.0);
+  std::printf("%s", s.Table().c_str());
+  o.rungs.pop_back();
+  EXPECT_THROW(RunFidelityLadder(o), InputError);
+}
+
+}  // namespace
+}  // namespace spallkit::sim
