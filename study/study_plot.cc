@@ -255,6 +255,9 @@ PlottedSeries PlotStudy(const std::string& dir,
   csv << "group," << o.x << "," << o.y << ",cases\n";
   size_t gi = 0;
   for (const auto& [g, xs] : points) {
+    std::string quoted_group = "\"";  // a CSV cell: quotes doubled (string values carry quotes)
+    for (char ch : g) quoted_group += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+    quoted_group += '"';
     plot::LineSeries s;
     s.label = g.empty() ? o.y : g;
     s.color = plot::PaletteColor(gi);
@@ -267,7 +270,7 @@ PlottedSeries PlotStudy(const std::string& dir,
       ys.push_back(y);
       groups.push_back(static_cast<double>(gi));
       counts.push_back(sum.second);
-      csv << "\"" << g << "\"," << TomlValueText(x) << "," << TomlValueText(y) << "," << sum.second
+      csv << quoted_group << "," << TomlValueText(x) << "," << TomlValueText(y) << "," << sum.second
           << "\n";
     }
     p.series.push_back(std::move(s));
