@@ -122,11 +122,9 @@ double ComputeDefectiveQuantity(const std::string& file, const std::string& name
   };
   double sum = 0;
   for (int j : rollers) {
-    if (name == "defective_cage_force_rms") {
+    if (name == "defective_cage_force_rms") {  // RMS over every defective roller's samples
       const std::vector<double> force = column("/contact/roller_cage", j);
-      double m2 = 0;
-      for (size_t i = first; i < force.size(); ++i) m2 += force[i] * force[i];
-      sum += std::sqrt(m2 / static_cast<double>(force.size() - first));
+      for (size_t i = first; i < force.size(); ++i) sum += force[i] * force[i];
       continue;
     }
     sim::RollerSlidingOptions so;
@@ -141,6 +139,8 @@ double ComputeDefectiveQuantity(const std::string& file, const std::string& name
     sum +=
         name == "defective_rolling_percent" ? 100.0 * s.rolling_fraction : s.episodes_per_cage_rev;
   }
+  if (name == "defective_cage_force_rms")
+    return std::sqrt(sum / static_cast<double>((t.size() - first) * rollers.size()));
   return sum / static_cast<double>(rollers.size());
 }
 
@@ -255,6 +255,9 @@ PlottedSeries PlotStudy(const std::string& dir,
   csv << "group," << o.x << "," << o.y << ",cases\n";
   size_t gi = 0;
   for (const auto& [g, xs] : points) {
+    std::string quoted_group = "\"";  // a CSV cell: quotes doubled (string values carry quotes)
+    for (char ch : g) quoted_group += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+    quoted_group += '"';
     plot::LineSeries s;
     s.label = g.empty() ? o.y : g;
     s.color = plot::PaletteColor(gi);
@@ -267,7 +270,7 @@ PlottedSeries PlotStudy(const std::string& dir,
       ys.push_back(y);
       groups.push_back(static_cast<double>(gi));
       counts.push_back(sum.second);
-      csv << "\"" << g << "\"," << TomlValueText(x) << "," << TomlValueText(y) << "," << sum.second
+      csv << quoted_group << "," << TomlValueText(x) << "," << TomlValueText(y) << "," << sum.second
           << "\n";
     }
     p.series.push_back(std::move(s));

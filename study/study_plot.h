@@ -10,11 +10,11 @@
 //   cage_slip_rms    RMS of /cage/slip_ratio, in percent
 //   cage_force_rms   RMS over all rollers of /contact/roller_cage, N
 //   outer_force_max  largest roller-outer race force, N
-//   defective_cage_force_rms       RMS of /contact/roller_cage of the defective rollers, N
+//   defective_cage_force_rms       RMS of /contact/roller_cage over the defective rollers, N
 //   defective_rolling_percent      time the defective rollers roll, %
-//   (sim/bearing/roller_sliding.h) defective_slides_per_cage_rev  their sliding episodes per cage
-//   revolution
-//     (the defective rollers are the case's [[defects]] rollers, averaged; healthy cases have none)
+//   defective_slides_per_cage_rev  their sliding episodes per cage revolution
+//     (sim/bearing/roller_sliding.h; the defective rollers are the case's [[defects]] rollers,
+//     the sliding measures are averaged over them; healthy cases have no value)
 //   rms:/PATH        RMS of any dataset (mean kept)
 // Groups: the cases with equal values of the `group` keys (default: every other [grid] key);
 // cases of one group with equal x (random draws) are averaged into one point.

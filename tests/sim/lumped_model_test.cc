@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "core/constants.h"
+#include "core/error.h"
 #include "core/hdf5.h"
 #include "sim/bearing/fidelity_choice.h"
+#include "sim/bearing/fidelity_ladder.h"
 #include "sim/bearing/scene.h"
 #include "sim/bearing/simulation.h"
 
@@ -150,35 +152,80 @@ TEST(LumpedModelTest, ResumedRunIsBitIdenticalAndTheFileNamesTheModel) {
 }
 
 // model.fidelity = "auto" takes the cheapest rung whose measured errors meet [run.tolerance]:
-// the defaults admit the lumped model, a tolerance tighter than the lumped model's measured f_b
-// error moves to the hybrid, one tighter than every rung's to the full FE; an explicit fidelity
-// is kept. The choice is written to the HDF5 file.
+// tolerances looser than the lumped model's measured errors admit it, an f_b tolerance between the
+// lumped and the hybrid errors moves to the hybrid, one tighter than every rung's to the full FE;
+// an explicit fidelity is kept. The choice is printed and written to the HDF5 file.
 TEST(FidelityChoiceTest, AutoPicksTheCheapestRungWithinTheTolerance) {
   const std::vector<RungErrors>& rungs = MeasuredRungErrors();
-  ASSERT_EQ(rungs.front().fidelity, Fidelity::kLumped);
-  const double lumped_fb = rungs.front().f_b;
-  auto choose = [](std::vector<std::string> sets) {
-    sets.insert(sets.begin(), "model.fidelity=auto");
-    return ChooseFidelity(LoadScene(SceneFile(), sets));
+  ASSERT_EQ(rungs.size(), 3u);
+  const RungErrors& lumped = rungs[0];
+  const RungErrors& hybrid = rungs[1];
+  ASSERT_EQ(lumped.fidelity, Fidelity::kLumped);
+  ASSERT_EQ(hybrid.fidelity, Fidelity::kHybrid);
+  auto loose = [&](double f_b) {
+    return std::vector<std::string>{
+        "model.fidelity=auto",
+        "run.tolerance.f_b=" + std::to_string(f_b),
+        "run.tolerance.f_c=" + std::to_string(2 * lumped.f_c),
+        "run.tolerance.cage_slip=" + std::to_string(2 * lumped.cage_slip),
+        "run.tolerance.roller_load=" + std::to_string(2 * lumped.roller_load)};
   };
-  const FidelityChoice def = choose({});
-  EXPECT_EQ(def.fidelity, Fidelity::kLumped) << def.reason;
-  EXPECT_NE(def.reason.find("auto -> lumped"), std::string::npos) << def.reason;
-  EXPECT_EQ(choose({"run.tolerance.f_b=" + std::to_string(0.5 * lumped_fb)}).fidelity,
-            Fidelity::kHybrid);
-  EXPECT_EQ(choose({"run.tolerance.cage_slip=1e-9"}).fidelity, Fidelity::kFe);
+  const FidelityChoice to_lumped = ChooseFidelity(LoadScene(SceneFile(), loose(2 * lumped.f_b)));
+  EXPECT_EQ(to_lumped.fidelity, Fidelity::kLumped) << to_lumped.reason;
+  EXPECT_NE(to_lumped.reason.find("auto -> lumped"), std::string::npos) << to_lumped.reason;
+  if (hybrid.f_b < lumped.f_b) {
+    const double between = 0.5 * (hybrid.f_b + lumped.f_b);
+    EXPECT_EQ(ChooseFidelity(LoadScene(SceneFile(), loose(between))).fidelity, Fidelity::kHybrid);
+  }
+  EXPECT_EQ(ChooseFidelity(
+                LoadScene(SceneFile(), {"model.fidelity=auto", "run.tolerance.cage_slip=1e-9"}))
+                .fidelity,
+            Fidelity::kFe);
   EXPECT_EQ(ChooseFidelity(LoadScene(SceneFile(), {"model.fidelity=hybrid"})).fidelity,
             Fidelity::kHybrid);
 
   SimulationOptions o;
   o.output_path = TempPath("auto.h5");
-  Simulation sim(LoadScene(SceneFile(), {"model.fidelity=auto", "run.duration_s=0.002"}), o);
+  std::vector<std::string> sets = loose(2 * lumped.f_b);
+  sets.push_back("run.duration_s=0.002");
+  Simulation sim(LoadScene(SceneFile(), sets), o);
   EXPECT_EQ(sim.model().fidelity(), Fidelity::kLumped);
+  EXPECT_EQ(sim.fidelity_reason(), to_lumped.reason);
   ASSERT_TRUE(sim.Run().completed);
   h5::File f = h5::File::OpenReadOnly(o.output_path);
   EXPECT_EQ(f.ReadStringAttribute("/", "fidelity").value_or(""), "lumped");
-  EXPECT_EQ(f.ReadStringAttribute("/", "fidelity_reason").value_or(""), def.reason);
+  EXPECT_EQ(f.ReadStringAttribute("/", "fidelity_reason").value_or(""), to_lumped.reason);
   std::remove(o.output_path.c_str());
+}
+
+// The ladder's books: a rung run twice is deterministic, so against itself every error is exactly
+// 0, while the kinematics it measured are the rolling bearing's (cage near pure rolling); options
+// with fewer than two rungs are refused.
+TEST(FidelityLadderTest, ARungAgainstItselfHasNoErrorAndOptionsAreChecked) {
+  LadderOptions o;
+  o.scenes.emplace_back("paper",
+                        LumpedScene({"operation.speed_rpm=6000", "operation.ramp_s=0.002"}));
+  o.rungs = {{Fidelity::kLumped, 0.0}, {Fidelity::kLumped, 0.0}};
+  o.duration_s = 0.02;
+  const LadderSummary s = RunFidelityLadder(o);
+  ASSERT_EQ(s.runs.size(), 2u);
+  ASSERT_EQ(s.rungs.size(), 2u);
+  for (const LadderRungSummary& r : s.rungs) {
+    EXPECT_EQ(r.f_b, 0.0);
+    EXPECT_EQ(r.f_c, 0.0);
+    EXPECT_EQ(r.cage_slip, 0.0);
+    EXPECT_EQ(r.rms, 0.0);
+    EXPECT_GT(r.wall_s_per_simulated_s, 0.0);
+  }
+  const LadderMetrics& m = s.runs[0].metrics;
+  const BearingGeometry& g = o.scenes[0].second.geometry.bearing;
+  const double fc_pure = 0.5 * 100.0 * (1.0 - g.element_diameter_m / g.pitch_diameter_m);
+  EXPECT_NEAR(m.f_c_hz / fc_pure, 1.0, 0.02);  // after only 20 ms with the 2 ms ramp
+  EXPECT_GT(m.f_b_hz, 0.0);
+  EXPECT_GT(m.harris_jones_load_n, 0.0);
+  std::printf("%s", s.Table().c_str());
+  o.rungs.pop_back();
+  EXPECT_THROW(RunFidelityLadder(o), InputError);
 }
 
 }  // namespace

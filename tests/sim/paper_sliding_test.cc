@@ -1,15 +1,21 @@
 // The roller sliding measure (sim/bearing/roller_sliding.h) on synthetic spin records and
 // against the kinematic spin; the paper's findings on hybrid runs: paper_study_slow_test.cc.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <vector>
 
 #include "core/bearing.h"
 #include "core/constants.h"
 #include "core/error.h"
+#include "core/hdf5.h"
 #include "sim/bearing/roller_sliding.h"
 #include "sim/bearing/scene.h"
+#include "study/dataset.h"
+#include "study/study_plot.h"
+#include "study/sweep.h"
 
 namespace spallkit::sim {
 namespace {
@@ -68,6 +74,49 @@ TEST(RollerSlidingTest, RejectsBadInput) {
   o = {};
   o.from_s = 1.0;
   EXPECT_THROW(MeasureRollerSliding(t, s, s, -1.0, o), InputError);
+}
+
+// `spall plot study --y defective_*`: the quantities come from the case's [[defects]] rollers
+// (two defective rollers, 4 ms hybrid runs at 6000 rpm); a healthy case has no point.
+TEST(PaperStudyPlotTest, DefectiveRollerQuantitiesUseTheDefectiveRollers) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("spall_paper_plot_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const study::Sweep sweep =
+      study::ParseSweep("[base]\nscene = \"" SPALLKIT_SOURCE_DIR
+                        "/datasets/scenes/paper-verification.toml\"\n"
+                        "[base.set]\n\"model.fidelity\" = \"hybrid\"\n\"mesh.size_mm\" = 2.0\n"
+                        "\"run.duration_s\" = 0.004\n\"operation.ramp_s\" = 0.001\n"
+                        "\"operation.load_ramp_s\" = 0.001\n\"operation.speed_rpm\" = 6000.0\n"
+                        "[grid]\n\"defects.count\" = [0, 2]\n",
+                        "<paper test>",
+                        dir.string());
+  study::DatasetOptions options;
+  options.out_dir = (dir / "ds").string();
+  options.workers = 2;
+  ASSERT_EQ(study::RunDataset(sweep, options).failed, 0);
+  study::StudyPlotOptions o;
+  o.x = "defects.count";
+  o.group_set = true;
+  // The force RMS over both defective rollers' columns, from the case file itself.
+  const h5::File f = h5::File::OpenReadOnly((dir / "ds" / "case-00001.h5").string());
+  std::vector<size_t> dims;
+  const std::vector<double> force = f.ReadDataset("/contact/roller_cage", &dims);
+  double m2 = 0;
+  for (size_t i = 0; i < dims[0]; ++i)
+    for (int j : {0, 1}) m2 += force[i * dims[1] + j] * force[i * dims[1] + j];
+  o.y = "defective_cage_force_rms";
+  study::PlottedSeries s = study::PlotStudy(options.out_dir, o, (dir / "f.png").string());
+  ASSERT_EQ(s.x.size(), 1u);  // the healthy case has no defective roller
+  EXPECT_EQ(s.x[0], 2.0);
+  EXPECT_NEAR(s.columns[0].second[0], std::sqrt(m2 / (2.0 * dims[0])), 1e-9);
+  o.y = "defective_rolling_percent";
+  s = study::PlotStudy(options.out_dir, o, (dir / "r.png").string());
+  ASSERT_EQ(s.x.size(), 1u);
+  EXPECT_GE(s.columns[0].second[0], 0.0);
+  EXPECT_LE(s.columns[0].second[0], 100.0);
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// A tiny 12-case sweep for the dataset tests (hybrid model, 4 ms per case on a coarse housing
+// A tiny 12-case sweep for the dataset tests (hybrid model, 2 ms per case on a coarse housing
 // mesh: each case takes a fraction of a second) and a comparison of two case files.
 #pragma once
 
@@ -22,7 +22,7 @@ inline std::string WriteTinySweep(const std::string& dir, int random_cases = 2) 
                          "[base.set]\n"
                          "\"model.fidelity\" = \"hybrid\"\n"
                          "\"mesh.size_mm\" = 2.0\n"
-                         "\"run.duration_s\" = 0.004\n"
+                         "\"run.duration_s\" = 0.002\n"
                          "\"operation.ramp_s\" = 0.001\n"
                          "\"operation.load_ramp_s\" = 0.001\n"
                          "\"run.output_rate_hz\" = 20000.0\n"

@@ -47,7 +47,7 @@ TEST(PythonExampleTest, DocExampleReadsADataset) {
   const auto run =
       testing::RunSpall("dataset run " + sweep + " --out " + dir.string() + "/ds --quiet");
   ASSERT_EQ(run.code, 0) << run.err;
-  // The tiny cases last 4 ms: point the example at them and skip 1 ms instead of 20.
+  // The tiny cases last 2 ms: point the example at them and skip 1 ms instead of 20.
   Replace(&code, "root = \"runs/training-set\"", "root = \"" + dir.string() + "/ds\"");
   Replace(&code, "skip_s=0.02", "skip_s=0.001");
   std::ofstream(dir / "example.py") << code;
@@ -60,7 +60,7 @@ TEST(PythonExampleTest, DocExampleReadsADataset) {
   out << in.rdbuf();
   EXPECT_EQ(rc, 0) << out.str();
   EXPECT_NE(out.str().find("roller    6"), std::string::npos) << out.str();  // cases per class
-  EXPECT_NE(out.str().find("case-00000 0.8 20000.0 (81,)"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("case-00000 0.8 20000.0 (41,)"), std::string::npos) << out.str();
   fs::remove_all(dir);
 }
 

@@ -1,0 +1,92 @@
+// spall bench ladder [SCENE...] [--quick] [--json] [--duration-s T] [--set key=value]...:
+// runs the scenes at every rung of the fidelity ladder on one thread and prints each rung's wall
+// time per simulated second and its errors against the finest rung run (sim/bearing/
+// fidelity_ladder.h). Default scenes: the paper's verification scene, the same bearing healthy,
+// and three defective rollers (datasets/scenes/rollers-3.toml); friction at the EHL traction
+// level 0.15 / 0.12, above the spall's tipping threshold, so every rung rolls the spall through
+// (docs/BEARING_MODEL.md, "Spall trapping"). Rungs: lumped, hybrid 2 / 1 mm (--quick), plus
+// hybrid 0.5 mm otherwise.
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/command.h"
+#include "core/error.h"
+#include "sim/bearing/fidelity_ladder.h"
+
+namespace {
+
+struct Opts {
+  std::vector<std::string> scenes;
+  std::vector<std::string> sets;
+  bool quick = false, json = false;
+  double duration_s = 0.15;
+  std::string scenes_dir = "datasets/scenes";
+};
+
+int Run(const Opts& o) {
+  using namespace spallkit::sim;
+  LadderOptions lo;
+  lo.duration_s = o.duration_s;
+  std::vector<std::string> sets = {"friction.mu_static=0.15", "friction.mu_dynamic=0.12"};
+  sets.insert(sets.end(), o.sets.begin(), o.sets.end());
+  const std::string dir = o.scenes_dir + "/";
+  if (o.scenes.empty()) {
+    lo.scenes.emplace_back("paper", LoadScene(dir + "paper-verification.toml", sets));
+    Scene healthy = LoadScene(dir + "paper-verification.toml", sets);
+    healthy.defects.clear();
+    lo.scenes.emplace_back("healthy", healthy);
+    lo.scenes.emplace_back("rollers-3", LoadScene(dir + "rollers-3.toml", sets));
+  } else {
+    for (const std::string& path : o.scenes) lo.scenes.emplace_back(path, LoadScene(path, sets));
+  }
+  lo.rungs = {{Fidelity::kLumped, 0.0}, {Fidelity::kHybrid, 2e-3}, {Fidelity::kHybrid, 1e-3}};
+  if (!o.quick) lo.rungs.push_back({Fidelity::kHybrid, 0.5e-3});
+  const LadderSummary s = RunFidelityLadder(
+      lo, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  if (o.json) {
+    nlohmann::json rungs = nlohmann::json::array();
+    for (const LadderRungSummary& r : s.rungs)
+      rungs.push_back({{"fidelity", FidelityName(r.rung.fidelity)},
+                       {"mesh_mm",
+                        r.rung.fidelity == Fidelity::kLumped ? nlohmann::json(nullptr)
+                                                             : nlohmann::json(r.rung.mesh_m * 1e3)},
+                       {"wall_s_per_simulated_s", r.wall_s_per_simulated_s},
+                       {"errors",
+                        {{"f_b", r.f_b},
+                         {"f_c", r.f_c},
+                         {"cage_slip", r.cage_slip},
+                         {"roller_load", r.roller_load},
+                         {"rms", r.rms},
+                         {"kurtosis", r.kurtosis},
+                         {"roller_load_vs_harris_jones", r.roller_load_vs_harris_jones}}},
+                       {"max_energy_balance_error", r.max_energy_balance_error}});
+    nlohmann::json j = {
+        {"reference", s.rungs.back().rung.Label()}, {"duration_s", o.duration_s}, {"rungs", rungs}};
+    std::printf("%s\n", j.dump(2).c_str());
+  } else {
+    std::printf("reference: %s, %g s per run, one thread\n%s",
+                s.rungs.back().rung.Label().c_str(),
+                o.duration_s,
+                s.Table().c_str());
+  }
+  return 0;
+}
+
+spallkit::apps::Register reg(
+    "bench ladder", "Fidelity ladder: run time against error for every rung", [](CLI::App& sub) {
+      auto o = std::make_shared<Opts>();
+      sub.add_option("scenes", o->scenes, "Scene files (default: paper, healthy, rollers-3)");
+      sub.add_flag("--quick", o->quick, "Lumped and hybrid 2 / 1 mm only");
+      sub.add_flag("--json", o->json, "Print JSON");
+      sub.add_option("--duration-s", o->duration_s, "Simulated time per run")
+          ->capture_default_str();
+      sub.add_option("--scenes-dir", o->scenes_dir, "Where the default scenes are")
+          ->capture_default_str();
+      sub.add_option("--set", o->sets, "Override a scene key in every scene (repeatable)");
+      return [o] { return Run(*o); };
+    });
+
+}  // namespace

@@ -1,0 +1,176 @@
+#include "sim/bearing/fidelity_ladder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/constants.h"
+#include "core/error.h"
+#include "sim/bearing/simulation.h"
+#include "sim/quasistatic/harris_jones.h"
+
+namespace spallkit::sim {
+namespace {
+
+double RelativeError(double value, double reference) {
+  return reference != 0.0 ? std::abs(value / reference - 1.0) : std::abs(value);
+}
+
+double HarrisJonesQmax(const Scene& scene) {
+  LoadDistributionOptions o;
+  o.radial_load_n = scene.operation.radial_load_n;
+  o.inner_ring_speed_rad_s = scene.operation.inner_ring_speed_rad_s;
+  o.roller_length_m = scene.geometry.thickness_m;
+  o.diametral_clearance_m = scene.geometry.diametral_clearance_m;
+  o.roller_density_kg_m3 = scene.materials.roller.density_kg_m3;
+  LoadDistributionSummary s;
+  SolveLoadDistribution(o, scene.geometry.bearing, &s);
+  return s.IsSolutionUsable() ? s.q_max_n : 0.0;
+}
+
+LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duration) {
+  Scene s = scene;
+  s.model.fidelity = FidelityName(rung.fidelity);
+  if (rung.fidelity != Fidelity::kLumped) s.mesh.size_m = s.mesh.contact_size_m = rung.mesh_m;
+  s.run.duration_s = duration;
+  s.solver.threads = 1;
+  s.outputs = {"contact_forces", "acceleration", "cage", "rollers"};
+  Simulation sim(s, {});
+  const SimulationSummary sum = sim.Run();
+  const Recorder& rec = sim.recorder();
+  const auto& t = rec.Find("/time")->data;
+  const auto& cage = rec.Find("/cage/omega")->data;
+  const auto& spin = rec.Find("/rollers/spin")->data;
+  const auto& outer = rec.Find("/contact/roller_outer")->data;
+  const int z = sim.model().num_rollers();
+  const int defective = s.defects.empty() ? 0 : s.defects.front().roller;
+  std::vector<bool> healthy(z, true);
+  for (const Defect& d : s.defects) healthy[d.roller] = false;
+  const std::vector<double>& accel = sim.recorder().Acceleration(0);
+  LadderMetrics m;
+  const double from = 2.0 * std::max(s.operation.ramp_s, s.operation.load_ramp_s);
+  std::vector<double> peaks;
+  double sum_a = 0, sum_a2 = 0;
+  int n = 0;
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < from) continue;
+    m.f_c_hz += cage[i];
+    m.f_b_hz += 2.0 * std::abs(spin[i * z + defective] - cage[i]);
+    double peak = 0;
+    for (int j = 0; j < z; ++j)
+      if (healthy[j]) peak = std::max(peak, outer[i * z + j]);
+    peaks.push_back(peak);
+    if (i < accel.size()) sum_a += accel[i], sum_a2 += accel[i] * accel[i];
+    ++n;
+  }
+  if (n == 0) throw InputError("bench ladder: duration_s leaves no samples after the ramps");
+  m.f_c_hz /= 2 * kPi * n;
+  m.f_b_hz /= 2 * kPi * n;
+  m.cage_slip = sum.cage_slip_mean;
+  std::sort(peaks.begin(), peaks.end());
+  m.roller_load_n = peaks[static_cast<size_t>(0.99 * (peaks.size() - 1))];
+  const double mean = sum_a / n;
+  m.rms = std::sqrt(std::max(0.0, sum_a2 / n - mean * mean));
+  double m4 = 0;
+  for (size_t i = 0; i < t.size() && i < accel.size(); ++i)
+    if (t[i] >= from) m4 += std::pow(accel[i] - mean, 4);
+  m.kurtosis = m.rms > 0 ? m4 / n / std::pow(m.rms, 4) : 0.0;
+  m.harris_jones_load_n = HarrisJonesQmax(s);
+  m.wall_s = sum.wall_seconds;
+  m.simulated_s = sum.time;
+  m.energy_balance_error = sum.energy_balance_error;
+  return m;
+}
+
+}  // namespace
+
+std::string LadderRung::Label() const {
+  std::ostringstream os;
+  os << FidelityName(fidelity);
+  if (fidelity != Fidelity::kLumped) os << " " << mesh_m * 1e3 << " mm";
+  return os.str();
+}
+
+bool LadderOptions::Validate(std::string* error) const {
+  auto fail = [&](const std::string& m) {
+    if (error) *error = "bench ladder: " + m;
+    return false;
+  };
+  if (scenes.empty()) return fail("no scenes");
+  if (rungs.size() < 2) return fail("needs at least two rungs (the last is the reference)");
+  for (const LadderRung& r : rungs)
+    if (r.fidelity != Fidelity::kLumped && !(r.mesh_m > 0)) return fail("mesh size must be > 0");
+  if (!(duration_s > 0)) return fail("duration_s must be > 0");
+  return true;
+}
+
+LadderSummary RunFidelityLadder(const LadderOptions& options,
+                                const std::function<void(const std::string&)>& progress) {
+  std::string err;
+  if (!options.Validate(&err)) throw InputError(err);
+  LadderSummary out;
+  for (const auto& [name, scene] : options.scenes)
+    for (const LadderRung& rung : options.rungs) {
+      out.runs.push_back({name, rung, Measure(scene, rung, options.duration_s)});
+      if (progress) {
+        const LadderMetrics& m = out.runs.back().metrics;
+        std::ostringstream os;
+        os.precision(4);
+        os << name << " / " << rung.Label() << ": " << m.wall_s << " s wall, f_b " << m.f_b_hz
+           << " Hz, f_c " << m.f_c_hz << " Hz, slip " << 100 * m.cage_slip << " %, Q "
+           << m.roller_load_n << " N, rms " << m.rms << ", energy " << 100 * m.energy_balance_error
+           << " %";
+        progress(os.str());
+      }
+    }
+  const size_t nr = options.rungs.size();
+  for (size_t r = 0; r < nr; ++r) {
+    LadderRungSummary s;
+    s.rung = options.rungs[r];
+    double wall = 0, simulated = 0;
+    for (size_t k = 0; k < options.scenes.size(); ++k) {
+      const LadderMetrics& m = out.runs[k * nr + r].metrics;
+      const LadderMetrics& ref = out.runs[k * nr + nr - 1].metrics;
+      wall += m.wall_s, simulated += m.simulated_s;
+      s.f_b = std::max(s.f_b, RelativeError(m.f_b_hz, ref.f_b_hz));
+      s.f_c = std::max(s.f_c, RelativeError(m.f_c_hz, ref.f_c_hz));
+      s.cage_slip = std::max(s.cage_slip, std::abs(m.cage_slip - ref.cage_slip));
+      s.roller_load = std::max(s.roller_load, RelativeError(m.roller_load_n, ref.roller_load_n));
+      s.rms = std::max(s.rms, RelativeError(m.rms, ref.rms));
+      s.kurtosis = std::max(s.kurtosis, RelativeError(m.kurtosis, ref.kurtosis));
+      s.roller_load_vs_harris_jones = std::max(
+          s.roller_load_vs_harris_jones, RelativeError(m.roller_load_n, m.harris_jones_load_n));
+      s.max_energy_balance_error = std::max(s.max_energy_balance_error, m.energy_balance_error);
+    }
+    s.wall_s_per_simulated_s = simulated > 0 ? wall / simulated : 0.0;
+    out.rungs.push_back(s);
+  }
+  return out;
+}
+
+std::string LadderSummary::Table() const {
+  std::ostringstream os;
+  os.precision(3);
+  os << "rung            wall s/sim s   f_b %   f_c %  slip pp  load %  rms %  kurt %  "
+        "load-HJ %  energy %\n";
+  char line[256];
+  for (const LadderRungSummary& r : rungs) {
+    std::snprintf(line,
+                  sizeof line,
+                  "%-15s %12.3g %7.3f %7.3f %8.3f %7.2f %6.1f %7.1f %9.2f %9.3f\n",
+                  r.rung.Label().c_str(),
+                  r.wall_s_per_simulated_s,
+                  100 * r.f_b,
+                  100 * r.f_c,
+                  100 * r.cage_slip,
+                  100 * r.roller_load,
+                  100 * r.rms,
+                  100 * r.kurtosis,
+                  100 * r.roller_load_vs_harris_jones,
+                  100 * r.max_energy_balance_error);
+    os << line;
+  }
+  return os.str();
+}
+
+}  // namespace spallkit::sim

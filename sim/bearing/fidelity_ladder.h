@@ -1,0 +1,69 @@
+// The fidelity ladder benchmark behind `spall bench ladder`: the same scenes run at every rung
+// (lumped; hybrid at several housing meshes; full FE at several meshes) on one thread, and each
+// rung's wall time per simulated second and its errors against the finest rung run and against
+// independent references (pure-rolling kinematics, Harris-Jones roller load).
+//
+// Measured per run (after twice the speed ramp): f_c = mean cage speed / 2 pi, f_b = 2 |w_r - w_c|
+// / 2 pi of the first defective roller (a healthy scene: roller 0), the cage slip ratio, the
+// largest healthy-roller outer load (99th percentile over the samples of the largest
+// healthy-roller load), RMS and kurtosis of the vertical acceleration, the energy balance.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sim/bearing/bearing_model.h"
+#include "sim/bearing/scene.h"
+
+namespace spallkit::sim {
+
+struct LadderRung {
+  Fidelity fidelity = Fidelity::kLumped;
+  double mesh_m = 0.0;        // housing (hybrid) or whole-model (fe) element size; lumped: unused
+  std::string Label() const;  // "lumped", "hybrid 2 mm", ...
+};
+
+struct LadderOptions {
+  // Scenes by name and the scene each runs (already loaded, overrides applied).
+  std::vector<std::pair<std::string, Scene>> scenes;
+  // Coarse to fine; the last is the reference of the errors.
+  std::vector<LadderRung> rungs;
+  double duration_s = 0.15;  // simulated, every run
+  bool Validate(std::string* error) const;
+};
+
+struct LadderMetrics {
+  double f_b_hz = 0, f_c_hz = 0, cage_slip = 0, roller_load_n = 0, rms = 0, kurtosis = 0;
+  double harris_jones_load_n = 0;  // Q_max of the same scene
+  double wall_s = 0, simulated_s = 0, energy_balance_error = 0;
+};
+
+struct LadderRun {
+  std::string scene;
+  LadderRung rung;
+  LadderMetrics metrics;
+};
+
+struct LadderRungSummary {
+  LadderRung rung;
+  double wall_s_per_simulated_s = 0;  // over all its runs
+  // Largest relative error over the scenes against the finest rung (cage_slip: absolute
+  // difference of the slip ratio); roller_load_vs_harris_jones against the quasi-static load.
+  double f_b = 0, f_c = 0, cage_slip = 0, roller_load = 0, rms = 0, kurtosis = 0;
+  double roller_load_vs_harris_jones = 0;
+  double max_energy_balance_error = 0;
+};
+
+struct LadderSummary {
+  std::vector<LadderRun> runs;
+  std::vector<LadderRungSummary> rungs;
+  std::string Table() const;  // one line per rung
+};
+
+// Runs every scene at every rung (one thread each). `progress` gets one line per finished run.
+// Throws InputError for invalid options or scenes.
+LadderSummary RunFidelityLadder(const LadderOptions& options,
+                                const std::function<void(const std::string&)>& progress = {});
+
+}  // namespace spallkit::sim
