@@ -1,5 +1,5 @@
 // A single-channel vibration record: what the diagnosis reads (core/record_io.h reads it from
-// CSV/HDF5) and what a simulation's recorder produces (sim/bearing/recorder.h, ToRecord). It
+// CSV/HDF5) and what a simulation's recorder produces (sim/bearing/record_adapter.h, ToRecord). It
 // lives in core so that the simulator and the DSP layer share it without depending on each other.
 #pragma once
 

@@ -61,6 +61,8 @@ class Recorder {
   const Series* Find(const std::string& path) const;
   // Acceleration channels by (sensor, direction) in model.sensor_channels() order.
   const std::vector<double>& Acceleration(int channel) const { return accel_out_[channel]; }
+  bool records_acceleration() const { return accel_; }
+  double output_rate_hz() const { return options_.output_rate_hz; }
 
   std::string SaveState() const;
   void LoadState(const std::string& bytes);

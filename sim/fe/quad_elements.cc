@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/multiversion.h"
 #include "sim/fe/mesh_primitives.h"
 
 namespace spallkit::sim::fe {
@@ -279,6 +280,8 @@ double QuadElements::StableStep(const NodalState& s) const {
   return 1.0 / inv_dt;
 }
 
+// The element kernel is inlined here once per instruction set (core/multiversion.h).
+SPALLKIT_MULTIVERSION
 void QuadElements::ComputeBlock(int k, const NodalState& s, double dt_prev) {
   block_inv_dt_[k] =
       beta_ > 0.0 ? BlockKernel<true>(

@@ -2,18 +2,18 @@
 // the checks are described at the top of that file): exit code, one `spall:` line on stderr with
 // the expected fragment, no hang, no output file left behind.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <ostream>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "tests/apps/run_spall.h"
 
 namespace {
 
@@ -69,29 +69,7 @@ void Replace(std::string* s, const std::string& from, const std::string& to) {
     s->replace(p, from.size(), to);
 }
 
-struct Outcome {
-  int code = -1;
-  bool timed_out = false;
-  std::string out, err;
-};
-
-// Like tests/apps/run_spall.h's RunSpall, with a time limit: a hang is a failure, not a stuck
-// test run.
-Outcome RunWithTimeout(const std::string& args, const fs::path& err_path) {
-  const std::string cmd = "timeout -k 5 " + std::to_string(kTimeoutSeconds) + " " +
-                          SPALLKIT_SPALL_EXE + " " + args + " 2>" + err_path.string();
-  Outcome r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.timed_out = r.code == 124 || r.code == 137;
-  std::ifstream e(err_path);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  return r;
-}
+using spallkit::testing::RunSpall;
 
 std::vector<std::string> NonEmptyLines(const std::string& text) {
   std::vector<std::string> lines;
@@ -131,14 +109,12 @@ TEST_P(BadInput, Case) {
   Replace(&args, "{scene}", kData + "/fast.toml");
   Replace(&args, "{data}", kData);
 
-  const fs::path err_path = fs::temp_directory_path() / ("spall_bad_input_" + c.name + "_" +
-                                                         std::to_string(::getpid()) + ".err");
-  const Outcome r = RunWithTimeout(args, err_path);
-  fs::remove(err_path);
+  const spallkit::testing::SpallResult r = RunSpall(args, kTimeoutSeconds);
   const std::string context = "bad_input.corpus:" + std::to_string(c.line) + " spall " + args +
                               "\nstderr: " + r.err.substr(0, 2000);
 
-  ASSERT_FALSE(r.timed_out) << "no result within " << kTimeoutSeconds << " s (a hang)\n" << context;
+  ASSERT_FALSE(r.timed_out()) << "no result within " << kTimeoutSeconds << " s (a hang)\n"
+                              << context;
   EXPECT_EQ(r.code, c.exit_code) << context;
   if (c.exit_code == 0) {
     EXPECT_NE((r.out + r.err).find(c.fragment), std::string::npos) << context;

@@ -17,35 +17,27 @@
 
 #include "core/constants.h"
 #include "core/hdf5.h"
+#include "tests/apps/run_spall.h"
 
 namespace {
 
 using spallkit::kPi;
-
-std::string RunCommand(const std::string& cmd, int* code) {
-  std::string out;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  char buf[4096];
-  while (p && fgets(buf, sizeof buf, p)) out += buf;
-  *code = p ? pclose(p) : -1;
-  return out;
-}
+using spallkit::testing::RunSpall;
 
 TEST(HybridDiagnoseTest, DiagnoseFindsTheRollerSpallAtThePapersSpeed) {
   const std::string dir = ::testing::TempDir();
   const std::string h5_path = dir + "/hybrid_diag_1200.h5", csv = dir + "/hybrid_diag_1200.csv";
-  const std::string exe = SPALLKIT_SPALL_EXE;
   const std::string scene =
       std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml";
   int code = 0;
-  std::string out = RunCommand(exe + " simulate " + scene + " -o " + h5_path + " --csv " + csv +
+  std::string out = RunSpall("simulate " + scene + " -o " + h5_path + " --csv " + csv +
                                    " --quiet --set model.fidelity=hybrid --set mesh.size_mm=2.0"
                                    " --set run.duration_s=0.8 --set friction.mu_static=0.1"
                                    " --set friction.mu_dynamic=0.08",
                                &code);
   ASSERT_EQ(code, 0) << out;
   std::printf("%s", out.c_str());
-  out = RunCommand(exe + " diagnose " + csv + " --bearing N205EM --rpm 1200 --json", &code);
+  out = RunSpall("diagnose " + csv + " --bearing N205EM --rpm 1200 --json", &code);
   ASSERT_EQ(code, 0) << out;
   const nlohmann::json j = nlohmann::json::parse(out);
   const double fb_theory = j["kinematics"]["f_b_hz"], fc_theory = j["kinematics"]["cage_hz"];

@@ -27,9 +27,12 @@
 #include "sim/bearing/model_builder.h"
 #include "sim/bearing/scene.h"
 #include "sim/quasistatic/harris_jones.h"
+#include "tests/apps/run_spall.h"
 
 namespace spallkit::sim {
 namespace {
+
+using spallkit::testing::RunSpall;
 
 std::string SceneFile() {
   return std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml";
@@ -435,15 +438,6 @@ TEST(FullFeVerificationTest, DefectiveRollerForceDropsToZeroEveryHalfTurnInTheLo
   }
 }
 
-std::string RunCommand(const std::string& cmd, int* code) {
-  std::string out;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  char buf[4096];
-  while (p && fgets(buf, sizeof buf, p)) out += buf;
-  *code = p ? pclose(p) : -1;
-  return out;
-}
-
 // Interpolated peak of an SES near `nominal` (+-fraction): the highest bin, refined by a
 // parabola through the log levels of it and its neighbours. *prominence: peak level over the
 // median level of the window (a line stands well above the SES floor around it).
@@ -484,9 +478,8 @@ double SesPeak(const dsp::EnvelopeSpectrum& ses,
 TEST(HybridVerificationTest, SimulatedSignalCarriesRollerSpallAndCageRates) {
   const std::string dir = ::testing::TempDir();
   const std::string h5 = dir + "/hybrid_diag.h5", csv = dir + "/hybrid_diag.csv";
-  const std::string exe = SPALLKIT_SPALL_EXE;
   int code = 0;
-  std::string out = RunCommand(exe + " simulate " + SceneFile() + " -o " + h5 + " --csv " + csv +
+  std::string out = RunSpall("simulate " + SceneFile() + " -o " + h5 + " --csv " + csv +
                                    " --quiet --set model.fidelity=hybrid --set mesh.size_mm=2.0"
                                    " --set operation.speed_rpm=6000 --set operation.ramp_s=0.005"
                                    " --set run.duration_s=0.3 --set friction.mu_static=0.1"
@@ -494,7 +487,7 @@ TEST(HybridVerificationTest, SimulatedSignalCarriesRollerSpallAndCageRates) {
                                &code);
   ASSERT_EQ(code, 0) << out;
   std::printf("%s", out.c_str());
-  out = RunCommand(exe + " diagnose " + csv + " --bearing N205EM --rpm 6000 --json", &code);
+  out = RunSpall("diagnose " + csv + " --bearing N205EM --rpm 6000 --json", &code);
   ASSERT_EQ(code, 0) << out;
   const nlohmann::json j = nlohmann::json::parse(out);
   const double fb_theory = j["kinematics"]["f_b_hz"], fc_theory = j["kinematics"]["cage_hz"];
@@ -526,7 +519,7 @@ TEST(HybridVerificationTest, SimulatedSignalCarriesRollerSpallAndCageRates) {
   {
     const std::string h5h = dir + "/hybrid_healthy.h5";
     const std::string o =
-        RunCommand(exe + " simulate " + SceneFile() + " -o " + h5h +
+        RunSpall("simulate " + SceneFile() + " -o " + h5h +
                        " --quiet --set model.fidelity=hybrid --set mesh.size_mm=2.0"
                        " --set operation.speed_rpm=6000 --set operation.ramp_s=0.005"
                        " --set run.duration_s=0.12 --set friction.mu_static=0.1"

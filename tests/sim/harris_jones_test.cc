@@ -3,9 +3,7 @@
 #include "sim/quasistatic/harris_jones.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -15,6 +13,7 @@
 #include "core/bearing.h"
 #include "core/constants.h"
 #include "core/error.h"
+#include "tests/apps/run_spall.h"
 
 namespace spallkit::sim {
 namespace {
@@ -241,16 +240,7 @@ TEST(HertzLinePressure, ReproducesTheIso76StaticLoadRating) {
 }
 
 // The CLI prints the same solution; JSON keys are documented in docs/BEARING_MODEL.md.
-std::string RunSpall(const std::string& args, int* rc) {
-  std::string out;
-  FILE* p = popen((std::string(SPALLKIT_SPALL_EXE) + " " + args + " 2>&1").c_str(), "r");
-  if (!p) return out;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), buf.size(), p)) out += buf.data();
-  const int status = pclose(p);
-  *rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
-}
+using spallkit::testing::RunSpall;
 
 TEST(HarrisJonesCli, LoadsJsonReportsQmaxAndRollers) {
   int rc = -1;

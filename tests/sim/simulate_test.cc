@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 
 #include "core/error.h"
 #include "core/hdf5.h"
@@ -16,6 +15,7 @@
 #include "sim/bearing/simulation.h"
 #include "sim/fe/mesh_primitives.h"
 #include "sim/solver/explicit_solver.h"
+#include "tests/apps/run_spall.h"
 
 namespace spallkit::sim {
 namespace {
@@ -460,23 +460,14 @@ TEST(SimulateTest, RunPastTheEnergyErrorLimitStopsAndWritesNothing) {
   EXPECT_FALSE(written.good()) << o.output_path << " was written";
 }
 
-std::string RunCli(const std::string& args, int* code) {
-  const std::string out = TempPath("cli.txt");
-  const std::string cmd = std::string(SPALLKIT_SPALL_EXE) + " " + args + " > " + out + " 2>&1";
-  const int rc = std::system(cmd.c_str());
-  *code = WEXITSTATUS(rc);
-  std::ifstream in(out);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using spallkit::testing::RunSpall;
 
 TEST(SimulateCliTest, PrintsTheSummaryAndWritesFiles) {
   std::string sets;
   for (const std::string& s : CoarseSets(1e-4)) sets += " --set '" + s + "'";
   int code = -1;
   const std::string h5 = TempPath("cli.h5"), csv = TempPath("cli.csv");
-  const std::string out = RunCli(
+  const std::string out = RunSpall(
       "simulate " + Scenes() + "paper-verification.toml -o " + h5 + " --csv " + csv + sets, &code);
   EXPECT_EQ(code, 0) << out;
   for (const char* key : {"steps",
@@ -495,7 +486,7 @@ TEST(SimulateCliTest, PrintsTheSummaryAndWritesFiles) {
   std::remove(h5.c_str());
   std::remove(csv.c_str());
 
-  const std::string ledger = RunCli(
+  const std::string ledger = RunSpall(
       "simulate " + Scenes() + "paper-verification.toml --quiet --energy-ledger -o " + h5 + sets,
       &code);
   EXPECT_EQ(code, 0) << ledger;
@@ -503,7 +494,7 @@ TEST(SimulateCliTest, PrintsTheSummaryAndWritesFiles) {
   EXPECT_NE(ledger.find("roller0.surface/outer_ring.raceway"), std::string::npos) << ledger;
   std::remove(h5.c_str());
 
-  const std::string bad = RunCli(
+  const std::string bad = RunSpall(
       "simulate " + Scenes() + "paper-verification.toml -o " + h5 + " --set mesh.sise_mm=1", &code);
   EXPECT_EQ(code, 2);
   EXPECT_NE(bad.find("spall: error:"), std::string::npos) << bad;
