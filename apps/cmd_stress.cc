@@ -1,4 +1,4 @@
-// spall stress [--scenes N] [--seed S] [--fidelity hybrid|fe] [--max-duration-ms T]
+// spall stress [--scenes N] [--seed S] [--fidelity hybrid|lumped|fe] [--max-duration-ms T]
 //              [--min-mesh-mm H] [--json]: numerical stability stress test of the simulator
 // (sim/stress/stress.h, docs/RELIABILITY.md). Prints one row per scene and every failure with the
 // --set list that reproduces it; exit code 1 when any scene failed.
@@ -50,7 +50,7 @@ spallkit::apps::Register reg(
       sub.add_option("--scenes", o->stress.scenes, "Number of scenes")->capture_default_str();
       sub.add_option("--seed", o->stress.seed, "Seed of the draw (same scenes on every machine)")
           ->capture_default_str();
-      sub.add_option("--fidelity", o->stress.fidelity, "Model of every scene: hybrid or fe")
+      sub.add_option("--fidelity", o->stress.fidelity, "Model of every scene: hybrid, lumped or fe")
           ->capture_default_str();
       sub.add_option("--max-duration-ms", o->max_duration_ms, "Longest simulated time per scene")
           ->capture_default_str();

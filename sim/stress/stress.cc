@@ -179,8 +179,9 @@ bool StressOptions::Validate(std::string* error) const {
     return false;
   };
   if (scenes < 1 || scenes > 100000) return fail("stress: scenes must be in [1, 100000]");
-  if (fidelity != "hybrid" && fidelity != "fe")
-    return fail("stress: fidelity must be \"hybrid\" or \"fe\" (got \"" + fidelity + "\")");
+  if (fidelity != "hybrid" && fidelity != "fe" && fidelity != "lumped")
+    return fail("stress: fidelity must be \"hybrid\", \"lumped\" or \"fe\" (got \"" + fidelity +
+                "\")");
   if (!(max_duration_s >= 1e-3 && max_duration_s <= 1.0))
     return fail("stress: max duration must be in [0.001, 1] s");
   if (!(min_mesh_size_mm >= 0.25 && min_mesh_size_mm <= max_mesh_size_mm &&
