@@ -1,4 +1,5 @@
-// spall bench ladder [SCENE...] [--quick] [--json] [--duration-s T] [--set key=value]...:
+// spall bench ladder [SCENE...] [--quick] [--json] [--plot pareto.png] [--duration-s T]
+// [--set key=value]...:
 // runs the scenes at every rung of the fidelity ladder on one thread and prints each rung's wall
 // time per simulated second and its errors against the finest rung run (sim/bearing/
 // fidelity_ladder.h). Default scenes: the paper's verification scene, the same bearing healthy,
@@ -6,6 +7,8 @@
 // level 0.15 / 0.12, above the spall's tipping threshold, so every rung rolls the spall through
 // (docs/BEARING_MODEL.md, "Spall trapping"). Rungs: lumped, hybrid 2 / 1 mm (--quick), plus
 // hybrid 0.5 mm otherwise.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -14,6 +17,7 @@
 
 #include "apps/command.h"
 #include "core/error.h"
+#include "plot/line_plot.h"
 #include "sim/bearing/fidelity_ladder.h"
 
 namespace {
@@ -22,6 +26,7 @@ struct Opts {
   std::vector<std::string> scenes;
   std::vector<std::string> sets;
   bool quick = false, json = false;
+  std::string plot;
   double duration_s = 0.15;
   std::string scenes_dir = "datasets/scenes";
 };
@@ -46,6 +51,32 @@ int Run(const Opts& o) {
   if (!o.quick) lo.rungs.push_back({Fidelity::kHybrid, 0.5e-3});
   const LadderSummary s = RunFidelityLadder(
       lo, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  if (!o.plot.empty()) {
+    // Pareto view: the largest kinematic error (f_b, f_c, cage slip) against the cost, one
+    // labelled marker per rung (the reference rung has no error and only its marker).
+    spallkit::plot::LinePlot p;
+    p.title =
+        "Fidelity ladder: error against run time (reference " + s.rungs.back().rung.Label() + ")";
+    p.x_label = "log10 wall time per simulated second (s, one thread)";
+    p.y_label = "largest of f_b, f_c, cage slip error (%)";
+    p.log_y = true;
+    spallkit::plot::LineSeries line;
+    line.label = "rungs";
+    line.thickness = 2.5;
+    for (const LadderRungSummary& r : s.rungs) {
+      const double x = std::log10(r.wall_s_per_simulated_s);
+      const double e = 100 * std::max({r.f_b, r.f_c, r.cage_slip});
+      if (e > 0) line.x.push_back(x), line.y.push_back(e);
+      spallkit::plot::Marker m;
+      m.x = x;
+      m.label = r.rung.Label();
+      p.markers.push_back(m);
+    }
+    p.series.push_back(line);
+    p.x_min = p.markers.front().x - 0.3;
+    p.x_max = p.markers.back().x + 0.3;
+    spallkit::plot::WriteLinePlot(o.plot, p);
+  }
   if (o.json) {
     nlohmann::json rungs = nlohmann::json::array();
     for (const LadderRungSummary& r : s.rungs)
@@ -81,6 +112,7 @@ spallkit::apps::Register reg(
       sub.add_option("scenes", o->scenes, "Scene files (default: paper, healthy, rollers-3)");
       sub.add_flag("--quick", o->quick, "Lumped and hybrid 2 / 1 mm only");
       sub.add_flag("--json", o->json, "Print JSON");
+      sub.add_option("--plot", o->plot, "Write the error-against-time plot (PNG)");
       sub.add_option("--duration-s", o->duration_s, "Simulated time per run")
           ->capture_default_str();
       sub.add_option("--scenes-dir", o->scenes_dir, "Where the default scenes are")

@@ -8,23 +8,6 @@
 
 #include "core/error.h"
 
-#if defined(__AVX512F__) || defined(__AVX2__)
-#include <immintrin.h>
-#endif
-
-// glibc's vector math library (libmvec, linked through libm's linker script) has log1p and exp
-// for AVX2 from glibc 2.35.
-#if defined(__AVX2__) && defined(__GLIBC__) && defined(__GLIBC_PREREQ)
-#if __GLIBC_PREREQ(2, 35)
-#define SPALLKIT_LIBMVEC 1
-extern "C" __m256d _ZGVdN4v_log1p(__m256d);
-extern "C" __m256d _ZGVdN4v_exp(__m256d);
-#endif
-#endif
-#ifndef SPALLKIT_LIBMVEC
-#define SPALLKIT_LIBMVEC 0
-#endif
-
 namespace spallkit::dsp {
 
 bool DetectionOptions::IsValid(std::string* error) const {
@@ -91,23 +74,7 @@ std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
   const double n_eff = spectrum.effective_samples;
   const double cap = std::min(options.max_line_score, -std::log(1e-300));
   const double* z = spectrum.z.data();
-  int i = 0;
-#if SPALLKIT_LIBMVEC
-  // Four bins at a time through glibc's vector log1p/exp (libmvec, <= 4 ulp from the scalar
-  // functions): the three transcendentals per bin were half of a band's comb search.
-  const __m256d vn = _mm256_set1_pd(n_eff), vcap = _mm256_set1_pd(cap);
-  const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
-  for (; i + 4 <= count; i += 4) {
-    const __m256d zmax = _mm256_max_pd(_mm256_loadu_pd(z + i), _mm256_loadu_pd(z + i + 1));
-    const __m256d minus_log_q = _mm256_mul_pd(vn, _ZGVdN4v_log1p(_mm256_div_pd(zmax, vn)));
-    const __m256d q = _ZGVdN4v_exp(_mm256_sub_pd(zero, minus_log_q));
-    const __m256d s =
-        _mm256_min_pd(_mm256_sub_pd(minus_log_q, _ZGVdN4v_log1p(_mm256_sub_pd(one, q))), vcap);
-    const __m256d positive = _mm256_cmp_pd(zmax, zero, _CMP_GT_OQ);
-    _mm256_storeu_pd(out.data() + i, _mm256_and_pd(positive, s));
-  }
-#endif
-  for (; i < count; ++i) out[i] = PairScoreOf(z[i], z[i + 1], n_eff, cap);
+  for (int i = 0; i < count; ++i) out[i] = PairScoreOf(z[i], z[i + 1], n_eff, cap);
   return out;
 }
 
