@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "core/record_io.h"
 #include "dsp/diagnose.h"
-#include "dsp/diagnose_report.h"
+#include "study/diagnosis_plots.h"
 
 namespace {
 
@@ -59,7 +59,7 @@ int Run(const Opts& o) {
   if (!opt.IsValid(&error)) throw InputError(error);
 
   const dsp::Diagnosis d = dsp::Diagnose(record, g, o.rpm / 60.0, opt);
-  if (!o.plot_dir.empty()) dsp::WriteDiagnosisPlots(d, record.samples, o.plot_dir);
+  if (!o.plot_dir.empty()) study::WriteDiagnosisPlots(d, record.samples, o.plot_dir);
   if (o.json) {
     std::printf("%s\n", d.ToJson(2).c_str());
   } else {

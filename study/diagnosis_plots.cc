@@ -1,4 +1,4 @@
-#include "dsp/diagnose_report.h"
+#include "study/diagnosis_plots.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,10 +9,15 @@
 #include "dsp/spectra.h"
 #include "plot/plot.h"
 
-namespace spallkit::dsp {
+namespace spallkit::study {
 
 namespace {
 
+using dsp::Diagnosis;
+using dsp::FaultComponent;
+using dsp::Kurtogram;
+using dsp::Spectrogram;
+using dsp::StftOptions;
 using plot::Heatmap;
 using plot::LinePlot;
 using plot::LineSeries;
@@ -208,4 +213,4 @@ std::vector<std::string> WriteDiagnosisPlots(const Diagnosis& diagnosis,
           KurtogramPlot(diagnosis, dir)};
 }
 
-}  // namespace spallkit::dsp
+}  // namespace spallkit::study

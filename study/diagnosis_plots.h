@@ -12,13 +12,13 @@
 
 #include "dsp/diagnose.h"
 
-namespace spallkit::dsp {
+namespace spallkit::study {
 
 // Writes the three PNGs into `dir` (created if missing) and returns their paths. `signal` is the
 // record the diagnosis analysed (for the spectrogram). Throws InputError if dir cannot be made
 // or a file cannot be written.
-std::vector<std::string> WriteDiagnosisPlots(const Diagnosis& diagnosis,
+std::vector<std::string> WriteDiagnosisPlots(const dsp::Diagnosis& diagnosis,
                                              std::span<const double> signal,
                                              const std::string& dir);
 
-}  // namespace spallkit::dsp
+}  // namespace spallkit::study
