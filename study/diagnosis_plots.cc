@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "dsp/spectra.h"
 #include "plot/plot.h"
+#include "study/spectrogram_heatmap.h"
 
 namespace spallkit::study {
 
@@ -26,12 +27,6 @@ using plot::PaletteColor;
 using plot::Rgb;
 using plot::WriteHeatmap;
 using plot::WriteLinePlot;
-
-// "g" -> "g^2", "m/s^2" -> "(m/s^2)^2": a compound unit is bracketed before squaring.
-std::string Squared(const std::string& units) {
-  const bool compound = units.find_first_of("/^* ") != std::string::npos;
-  return (compound ? "(" + units + ")" : units) + "^2";
-}
 
 Rgb FamilyColor(FaultComponent c) {
   switch (c) {
@@ -59,8 +54,8 @@ std::string SesPlot(const Diagnosis& d, const std::string& dir) {
                 VerdictName(d.verdict));
   p.title = title;
   p.x_label = "cyclic frequency alpha (Hz)";
-  p.y_label =
-      "SES level |FFT(SE)|/N" + (d.units.empty() ? std::string() : " (" + Squared(d.units) + ")");
+  p.y_label = "SES level |FFT(SE)|/N" +
+              (d.units.empty() ? std::string() : " (" + SquaredUnits(d.units) + ")");
   double x_max = 0.0;
   for (const auto& f : d.families)
     if (f.component != FaultComponent::kCage) x_max = std::max(x_max, f.MaxLineHz());
@@ -115,7 +110,8 @@ std::string SpectrogramPlot(const Diagnosis& d,
   const int max_frames = 1200;
   while (static_cast<int>(signal.size() / o.hop) > max_frames) o.hop *= 2;
   const Spectrogram sg = Stft(signal, d.sample_rate_hz, o);
-  Heatmap h;
+  Heatmap h =
+      SpectrogramHeatmap(sg, d.sample_rate_hz, 0.0, signal.size() / d.sample_rate_hz, d.units);
   char title[200];
   std::snprintf(title,
                 sizeof title,
@@ -125,27 +121,6 @@ std::string SpectrogramPlot(const Diagnosis& d,
                 d.band.low_hz,
                 d.band.high_hz);
   h.title = title;
-  h.x_label = "time (s)";
-  h.y_label = "frequency (Hz)";
-  h.colorbar_label =
-      "PSD (dB re " + Squared(d.units.empty() ? std::string("unit") : d.units) + "/Hz)";
-  h.rows = sg.bins;
-  h.cols = sg.frames;
-  h.values.resize(static_cast<size_t>(h.rows) * h.cols);
-  double vmax = -1e300;
-  for (int t = 0; t < sg.frames; ++t)
-    for (int f = 0; f < sg.bins; ++f) {
-      const double v = sg.at(t, f);
-      h.values[static_cast<size_t>(f) * h.cols + t] = v;
-      vmax = std::max(vmax, v);
-    }
-  h.v_max = vmax;
-  h.v_min = vmax - 80.0;
-  h.x_min = 0.0;
-  h.x_max = signal.size() / d.sample_rate_hz;
-  h.y_min = 0.0;
-  h.y_max = 0.5 * d.sample_rate_hz;
-  h.row0_at_top = false;
   const std::string path = (std::filesystem::path(dir) / "spectrogram.png").string();
   WriteHeatmap(path, h);
   return path;

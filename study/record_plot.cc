@@ -13,6 +13,7 @@
 #include "dsp/envelope.h"
 #include "dsp/spectra.h"
 #include "plot/plot.h"
+#include "study/spectrogram_heatmap.h"
 
 namespace spallkit::study {
 namespace {
@@ -24,12 +25,6 @@ bool IsHdf5(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
   return ext == ".h5" || ext == ".hdf5" || ext == ".he5";
-}
-
-// "g" -> "g^2", "m/s^2" -> "(m/s^2)^2".
-std::string Squared(const std::string& units) {
-  const bool compound = units.find_first_of("/^* ") != std::string::npos;
-  return (compound ? "(" + units + ")" : units) + "^2";
 }
 
 std::string WithUnits(const std::string& what, const std::string& units) {
@@ -125,37 +120,19 @@ PlottedSeries PlotRecord(const std::string& input,
     so.hop = std::max(1, so.window / 4);
     while (x.size() / so.hop > 1200) so.hop *= 2;
     const dsp::Spectrogram sg = dsp::Stft(x, fs, so);
-    plot::Heatmap h;
+    plot::Heatmap h = SpectrogramHeatmap(sg, fs, first / fs, (last - first) / fs, r.units);
     h.title = "Spectrogram of " + name + " (Hann " + std::to_string(so.window) + ", hop " +
               std::to_string(so.hop) + ")";
-    h.x_label = "time (s)";
-    h.y_label = "frequency (Hz)";
-    h.colorbar_label =
-        "PSD (dB re " + Squared(r.units.empty() ? std::string("unit") : r.units) + "/Hz)";
-    h.rows = sg.bins;
-    h.cols = sg.frames;
-    h.values.resize(static_cast<size_t>(h.rows) * h.cols);
     PlottedSeries out;
     out.x_name = "time (s)";
     std::vector<double> freq, power;
-    double vmax = -1e300;
     for (int t = 0; t < sg.frames; ++t)
       for (int f = 0; f < sg.bins; ++f) {
-        const double v = sg.at(t, f);
-        h.values[static_cast<size_t>(f) * h.cols + t] = v;
-        vmax = std::max(vmax, v);
         out.x.push_back(first / fs + sg.time_s[t]);
         freq.push_back(sg.freq_hz[f]);
-        power.push_back(v);
+        power.push_back(sg.at(t, f));
       }
     out.columns = {{"frequency (Hz)", freq}, {"power (dB)", power}};
-    h.v_max = vmax;
-    h.v_min = vmax - 80.0;
-    h.x_min = first / fs;
-    h.x_max = last / fs;
-    h.y_min = 0.0;
-    h.y_max = fs / 2;
-    h.row0_at_top = false;
     h.width = o.width;
     h.height = o.height;
     plot::WriteHeatmap(png, h);
@@ -191,7 +168,7 @@ PlottedSeries PlotRecord(const std::string& input,
     const dsp::Spectrum sp = dsp::WelchPsd(x, fs, wo);
     p.title = "Power spectral density of " + name + " (Welch, Hann " + std::to_string(wo.segment) +
               ", " + std::to_string(sp.segments) + " segments)";
-    p.y_label = WithUnits("PSD", Squared(r.units.empty() ? "unit" : r.units) + "/Hz");
+    p.y_label = WithUnits("PSD", SquaredUnits(r.units.empty() ? "unit" : r.units) + "/Hz");
     p.log_y = true;
     s.label = "PSD";
     s.x = sp.freq_hz;
@@ -217,7 +194,7 @@ PlottedSeries PlotRecord(const std::string& input,
                   band.low_hz,
                   band.high_hz);
     p.title = title;
-    p.y_label = WithUnits("SES level |FFT(SE)|/N", Squared(r.units));
+    p.y_label = WithUnits("SES level |FFT(SE)|/N", SquaredUnits(r.units));
     s.label = "SES";
     for (size_t i = 1; i < es.level.size(); ++i) {
       s.x.push_back(es.freq_hz[i]);
