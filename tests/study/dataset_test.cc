@@ -82,7 +82,8 @@ TEST(DatasetTest, KilledHalfwayThenResumedEndsWithEveryCaseOnce) {
   const std::string dir = Scratch("kill");
   const std::string sweep = WriteTinySweep(dir);
   const std::string out = dir + "/out";
-  // Start the sweep on 2 workers, SIGKILL it once about half of the 12 cases are written.
+  // Start the sweep on 2 workers, SIGKILL it as soon as the first case file is written (on a
+  // loaded machine waiting for more risks the sweep finishing before the kill).
   const std::string log = dir + "/first.log";
   std::vector<std::string> args = {
       SPALLKIT_SPALL_EXE, "dataset", "run", sweep, "--out", out, "--workers", "2"};
@@ -97,14 +98,14 @@ TEST(DatasetTest, KilledHalfwayThenResumedEndsWithEveryCaseOnce) {
   ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
   posix_spawn_file_actions_destroy(&actions);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (CountCaseFiles(out) < 6 && std::chrono::steady_clock::now() < deadline)
+  while (CountCaseFiles(out) < 1 && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ::kill(pid, SIGKILL);
   int status = 0;
   ::waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep finished before it could be killed";
   const int before = CountCaseFiles(out);
-  ASSERT_GE(before, 6);
+  ASSERT_GE(before, 1);
   ASSERT_LT(before, 12);
   // What a kill during an index rewrite leaves (the killed process's pid is free now).
   std::ofstream(out + "/index.json.tmp-" + std::to_string(pid)) << "{";
