@@ -94,8 +94,10 @@ TEST(BearingModelTest, SmoothRaceContactRollsAtThePapersFriction) {
   // Mean cage slip over the last half (SimulationSummary: the record after 2 ramp_s is empty).
   EXPECT_NEAR(summary.cage_slip_mean, 0.0, 0.03) << summary.BriefReport();
   // The roller on the load line at the end: pure rolling spin (omega_roller =
-  // -(d_m / D)(1 - gamma^2) omega_i / 2 = -309.3 rad/s at 1200 rpm).
-  EXPECT_NEAR(sim.model().RollerMotion(0).omega, -309.3, 0.03 * 309.3);
+  // -(d_m / D)(1 - gamma^2) omega_i / 2 = -309.3 rad/s at 1200 rpm). An instant's spin on the
+  // 1 mm section carries a few per cent of facet noise, and its phase moves with round-off (a
+  // native and a portable build differ by 3.7 %), hence 6 %: the locked faceted case is +86.
+  EXPECT_NEAR(sim.model().RollerMotion(0).omega, -309.3, 0.06 * 309.3);
 }
 
 TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
