@@ -16,6 +16,7 @@
 #include "sim/fe/mesh_primitives.h"
 #include "sim/solver/explicit_solver.h"
 #include "tests/apps/run_spall.h"
+#include "tests/sim/same_datasets.h"
 
 namespace spallkit::sim {
 namespace {
@@ -252,23 +253,6 @@ std::string TempPath(const std::string& name) {
   return ::testing::TempDir() + "spallkit_simulate_" + name;
 }
 
-// Both files hold the same datasets with bit-identical samples (NaN equals NaN).
-void ExpectSameDatasets(const std::string& path_a, const std::string& path_b) {
-  h5::File fa = h5::File::OpenReadOnly(path_a), fb = h5::File::OpenReadOnly(path_b);
-  const auto names = fa.ListDatasets();
-  EXPECT_EQ(names, fb.ListDatasets());
-  EXPECT_GE(names.size(), 17u);
-  for (const std::string& p : names) {
-    SCOPED_TRACE(p);
-    const auto va = fa.ReadDataset(p), vb = fb.ReadDataset(p);
-    ASSERT_EQ(va.size(), vb.size());
-    for (size_t i = 0; i < va.size(); ++i)
-      if (!(std::isnan(va[i]) && std::isnan(vb[i]))) {
-        ASSERT_EQ(va[i], vb[i]) << "sample " << i;
-      }
-  }
-}
-
 TEST(SimulateTest, WritesTheDocumentedHdf5Layout) {
   const Scene scene = LoadScene(Scenes() + "paper-verification.toml", CoarseSets(2e-4));
   SimulationOptions o;
@@ -367,7 +351,7 @@ TEST(SimulateTest, ResumedRunIsBitIdenticalToAnUninterruptedOne) {
   EXPECT_TRUE(s2.resumed);
   EXPECT_EQ(s2.steps, sa.steps);
 
-  ExpectSameDatasets(a.output_path, b.output_path);
+  testing::ExpectSameDatasets(a.output_path, b.output_path);
   // A checkpoint of another scene is refused.
   std::vector<std::string> other = sets;
   other.push_back("operation.radial_load_n=5000");
@@ -413,7 +397,7 @@ TEST(SimulateTest, HybridResumedRunIsBitIdenticalToAnUninterruptedOne) {
   ASSERT_TRUE(s2.completed);
   EXPECT_TRUE(s2.resumed);
   EXPECT_EQ(s2.steps, sa.steps);
-  ExpectSameDatasets(a.output_path, b.output_path);
+  testing::ExpectSameDatasets(a.output_path, b.output_path);
   h5::File fa = h5::File::OpenReadOnly(a.output_path);
   // The run did reach the contacts (not a trivially idle model).
   const auto outer = fa.ReadDataset("/contact/roller_outer");
