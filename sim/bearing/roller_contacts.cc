@@ -245,7 +245,7 @@ double RollerContacts::Contact(
   const int counter = static_cast<int>(body);
   const double m = reduced_mass_[3 * j + counter];
   const double m_t = reduced_mass_t_[3 * j + counter];
-  double q[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0;
+  double q[2] = {0, 0}, qd[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0;
   double tx = -pts[0].ny, ty = pts[0].nx;
   for (int k = 0; k < npts; ++k) {
     const RacePoint& p = pts[k];
@@ -267,13 +267,31 @@ double RollerContacts::Contact(
     const double rate = -(rvx * p.nx + rvy * p.ny);  // d delta / dt
     const double c = 2.0 * zeta * std::sqrt(kn * m);
     q[k] = std::max(0.0, qe + c * rate);
-    damping_work_ += (q[k] - qe) * rate * dt;
+    qd[k] = q[k] - qe;
+    damping_work_ += 0.5 * qd[k] * rate * dt_avg_;  // first half step (v^(n-1/2))
     q_total += q[k];
     kn_total += kn;
     vt_acc += q[k] * (rvx * tx + rvy * ty);
   }
+  // The damper's second half step is due for every point in contact, also where it cancels
+  // the spring (q = 0, separating fast): no force acts there, but the books hold the spring's
+  // energy and the damper's work qd = -qe.
+  auto keep_dissipative = [&](int k, double ft) {
+    const RacePoint& p = pts[k];
+    DissipativeForce d;
+    d.roller = j, d.counter = body, d.px = p.px, d.py = p.py;
+    d.rx = p.px - b.x, d.ry = p.py - b.y;
+    const Body& centre = body == Counter::kCage ? cage_ : shaft_;
+    d.cx = p.px - centre.x, d.cy = p.py - centre.y;
+    d.damping_x = qd[k] * p.nx, d.damping_y = qd[k] * p.ny;
+    d.friction_x = ft * tx, d.friction_y = ft * ty;
+    d.dt_avg = dt_avg_;
+    pending_.push_back(d);
+  };
   if (!(q_total > 0)) {
     *spring = 0.0;
+    for (int k = 0; k < npts; ++k)
+      if (qd[k] != 0.0) keep_dissipative(k, 0.0);
     return 0.0;
   }
   // The contact module's friction law: stick spring returned to mu(v_t) Q, plus a damper on
@@ -285,8 +303,9 @@ double RollerContacts::Contact(
   const double fs = contact::ReturnMap(*spring, vt * dt, kt, cap).force;
   const double f = std::clamp(fs - ct * vt, -cap, cap);
   *spring = fs;
-  friction_work_ -= f * vt * dt;
+  friction_work_ -= 0.5 * f * vt * dt_avg_;
   for (int k = 0; k < npts; ++k) {
+    if (qd[k] != 0.0 && !(q[k] > 0)) keep_dissipative(k, 0.0);
     if (!(q[k] > 0)) continue;
     const RacePoint& p = pts[k];
     const double ft = f * q[k] / q_total;
@@ -294,6 +313,7 @@ double RollerContacts::Contact(
     fx_[j] += fx, fy_[j] += fy;
     torque_[j] += (p.px - b.x) * fy - (p.py - b.y) * fx;
     ApplyCounter(body, p.px, p.py, -fx, -fy);
+    keep_dissipative(k, ft);
   }
   return q_total;
 }
@@ -399,9 +419,39 @@ void RollerContacts::CageContacts(int j) {
   }
 }
 
+void RollerContacts::RelativeVelocity(const DissipativeForce& d,
+                                      double shaft_omega,
+                                      double* vx,
+                                      double* vy) const {
+  const Body& b = rollers_[d.roller];
+  double ux = 0, uy = 0;
+  if (d.counter == Counter::kOuterRace) {
+    race_->Velocity(d.px, d.py, &ux, &uy);
+  } else {
+    const Body& c = d.counter == Counter::kShaft ? shaft_ : cage_;
+    const double w = d.counter == Counter::kShaft ? shaft_omega : c.omega;
+    ux = c.vx - w * d.cy, uy = c.vy + w * d.cx;
+  }
+  *vx = b.vx - b.omega * d.ry - ux;
+  *vy = b.vy + b.omega * d.rx - uy;
+}
+
+void RollerContacts::BookPendingDissipation() {
+  // The shaft's spin over the last step's second half is shaft_.omega (Integrate set it).
+  for (const DissipativeForce& d : pending_) {
+    double vx, vy;
+    RelativeVelocity(d, shaft_.omega, &vx, &vy);
+    damping_work_ -= 0.5 * d.dt_avg * (d.damping_x * vx + d.damping_y * vy);
+    friction_work_ -= 0.5 * d.dt_avg * (d.friction_x * vx + d.friction_y * vy);
+  }
+  pending_.clear();
+}
+
 void RollerContacts::Step(OuterRace& race, double t, double dt) {
   race_ = &race;
+  BookPendingDissipation();
   dt_ = dt;
+  dt_avg_ = 0.5 * (dt_prev_ + dt);
   omega_s_ = speed_(t);
   shaft_fx_ = shaft_fy_ = shaft_torque_ = cage_fx_ = cage_fy_ = cage_torque_ = 0.0;
   step_potential_ = 0.0;
@@ -455,9 +505,14 @@ void RollerContacts::Integrate(double t, double dt) {
   centred += centred_energy(shaft_old, shaft_, shaft_mass_, 0.0);
   kinetic_ = kinetic;
   centred_kinetic_ = centred;
-  // Load work over the half steps around t^n; drive torque = -(contact torque on the shaft).
-  external_work_ += load * dt_avg * 0.5 * (vy_old + shaft_.vy);
-  external_work_ += -shaft_torque_ * omega_s_ * dt_avg;
+  // Load work over the half steps around t^n; drive torque = -(contact torque on the shaft),
+  // with the spins the contacts' relative velocities use (omega(t^n), then omega^(n+1/2)).
+  // The second halves are booked now and left out of ExternalWork() until the next step.
+  const double load_half = 0.5 * dt_avg * load * shaft_.vy;
+  const double drive_half = -0.5 * dt_avg * shaft_torque_ * shaft_.omega;
+  external_work_ += 0.5 * dt_avg * load * vy_old + load_half;
+  external_work_ += -0.5 * dt_avg * shaft_torque_ * omega_s_ + drive_half;
+  external_half_ = load_half + drive_half;
   dt_prev_ = dt;
 }
 
@@ -471,16 +526,43 @@ std::string RollerContacts::SaveState() const {
   put_body(shaft_);
   for (const auto* v : {&friction_, &outer_force_, &inner_force_, &cage_force_})
     for (double x : *v) out.Put(x);
-  for (double x : {dt_prev_, potential_, kinetic_, friction_work_, damping_work_, external_work_})
+  for (double x : {dt_prev_,
+                   potential_,
+                   kinetic_,
+                   friction_work_,
+                   damping_work_,
+                   external_work_,
+                   external_half_,
+                   centred_kinetic_})
     out.Put(x);
+  out.Put(static_cast<double>(pending_.size()));
+  for (const DissipativeForce& d : pending_)
+    for (double x : {static_cast<double>(d.roller),
+                     static_cast<double>(d.counter),
+                     d.px,
+                     d.py,
+                     d.rx,
+                     d.ry,
+                     d.cx,
+                     d.cy,
+                     d.damping_x,
+                     d.damping_y,
+                     d.friction_x,
+                     d.friction_y,
+                     d.dt_avg})
+      out.Put(x);
   return out.Take();
 }
 
 void RollerContacts::LoadState(const std::string& bytes) {
   const size_t z = rollers_.size();
-  const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 6;
-  if (bytes.size() != n * sizeof(double))
-    throw InputError("roller contacts: checkpoint state has the wrong size");
+  // Fixed part, then the count of pending dissipative forces and theirs.
+  const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 8 + 1;
+  constexpr size_t kPendingValues = 13;
+  const auto wrong_size = [] {
+    return InputError("roller contacts: checkpoint state has the wrong size");
+  };
+  if (bytes.size() < n * sizeof(double)) throw wrong_size();
   CheckpointReader in(bytes, "roller contacts: checkpoint state");
   auto get_body = [&](Body* b) {
     for (double* x : {&b->x, &b->y, &b->angle, &b->vx, &b->vy, &b->omega}) *x = in.Get<double>();
@@ -490,9 +572,39 @@ void RollerContacts::LoadState(const std::string& bytes) {
   get_body(&shaft_);
   for (auto* v : {&friction_, &outer_force_, &inner_force_, &cage_force_})
     for (double& x : *v) x = in.Get<double>();
-  for (double* x :
-       {&dt_prev_, &potential_, &kinetic_, &friction_work_, &damping_work_, &external_work_})
+  for (double* x : {&dt_prev_,
+                    &potential_,
+                    &kinetic_,
+                    &friction_work_,
+                    &damping_work_,
+                    &external_work_,
+                    &external_half_,
+                    &centred_kinetic_})
     *x = in.Get<double>();
+  const double count = in.Get<double>();
+  if (!(count >= 0 && count <= 4.0 * kFrictionSlots * z) ||
+      bytes.size() != (n + kPendingValues * static_cast<size_t>(count)) * sizeof(double))
+    throw wrong_size();
+  pending_.assign(static_cast<size_t>(count), DissipativeForce{});
+  for (DissipativeForce& d : pending_) {
+    d.roller = static_cast<int>(in.Get<double>());
+    const double counter = in.Get<double>();
+    if (!(d.roller >= 0 && d.roller < static_cast<int>(z)) || !(counter >= 0 && counter <= 2))
+      throw InputError("roller contacts: checkpoint state is damaged");
+    d.counter = static_cast<Counter>(static_cast<int>(counter));
+    for (double* x : {&d.px,
+                      &d.py,
+                      &d.rx,
+                      &d.ry,
+                      &d.cx,
+                      &d.cy,
+                      &d.damping_x,
+                      &d.damping_y,
+                      &d.friction_x,
+                      &d.friction_y,
+                      &d.dt_avg})
+      *x = in.Get<double>();
+  }
 }
 
 }  // namespace spallkit::sim

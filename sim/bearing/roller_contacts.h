@@ -28,8 +28,15 @@
 //    (sim/contact/friction.h: mu = mu_d + (mu_s - mu_d) exp(-decay |v|), a stick spring capped
 //    at mu Q) plus a damper on the stick spring.
 // Time integration: central differences (rigid_body.h), inside Step().
-// Energies: StoredEnergy() = contact potentials + the rigid bodies' kinetic energy,
-// DissipatedEnergy() = friction + contact damping, ExternalWork() = radial load + shaft drive.
+// Energies, all at t^n (the forces' time; central differences conserve energy measured there
+// to second order, while the kinetic energy at v^(n+1/2) differs from it by half a step of the
+// forces' power, a first-order error that swings with every impact): StoredEnergy() = contact
+// potentials at x^n + the rigid bodies' kinetic energy 1/2 m v^(n-1/2) . v^(n+1/2);
+// DissipatedEnergy() = friction + contact damping, ExternalWork() = radial load + shaft drive,
+// each force's work by the trapezoidal rule with the mid-step velocities, F^k . (v^(k-1/2) +
+// v^(k+1/2)) dt_avg / 2, up to t^n (step n's force counted over its first half step only; its
+// second half is booked at the next step, when the outer race's nodal velocities v^(n+1/2) are
+// known).
 #pragma once
 
 #include <string>
@@ -100,13 +107,13 @@ class RollerContacts {
   // Largest stable step of the contacts (safety factor included).
   double StableTimeStep() const { return dt_limit_; }
 
-  double StoredEnergy() const { return potential_ + kinetic_; }
+  double StoredEnergy() const { return potential_ + centred_kinetic_; }
   double DissipatedEnergy() const { return friction_work_ + damping_work_; }
-  double ExternalWork() const { return external_work_; }
-  // The same terms apart: rigid bodies' kinetic energy (at v^(n+1/2)), contact potentials (at
+  double ExternalWork() const { return external_work_ - external_half_; }
+  // The same terms apart: rigid bodies' kinetic energy at v^(n+1/2), contact potentials (at
   // x^n), friction and contact damping work.
   double KineticEnergy() const { return kinetic_; }
-  // The same at t^n, 1/2 m v^(n-1/2) . v^(n+1/2) (not checkpointed: valid after a step).
+  // The rigid bodies' kinetic energy at t^n, 1/2 m v^(n-1/2) . v^(n+1/2).
   double CentredKineticEnergy() const { return centred_kinetic_; }
   double ContactEnergy() const { return potential_; }
   double FrictionWork() const { return friction_work_; }
@@ -145,6 +152,19 @@ class RollerContacts {
 
  private:
   enum class Counter { kOuterRace, kShaft, kCage };
+  // A contact's damping and friction force on a roller at one point, kept for the second half
+  // of its work (the counter body gets the opposite force).
+  struct DissipativeForce {
+    int roller = 0;
+    Counter counter = Counter::kOuterRace;
+    double px = 0, py = 0;                // world point
+    double rx = 0, ry = 0;                // lever from the roller's mass centre
+    double cx = 0, cy = 0;                // lever from the shaft's or cage's centre
+    double damping_x = 0, damping_y = 0;  // normal damper force on the roller
+    double friction_x = 0, friction_y = 0;
+    double dt_avg = 0;
+  };
+
   // Candidate points of roller j against the outer (which = 0) or inner (1) race: positions of
   // the circle centre or the two rim fillet centres, normal along the centre line.
   int RacePoints(int j, int which, const RollerProfile& profile, RacePoint out[2]) const;
@@ -168,6 +188,15 @@ class RollerContacts {
   void CageContacts(int j);
   // Central-difference update of every rigid body and the energy books.
   void Integrate(double t, double dt);
+  // Velocity of roller j's material at lever (rx, ry) from its mass centre, less the counter
+  // body's at world point (px, py) (lever (cx, cy) from the shaft's or cage's centre), at the
+  // bodies' current velocities; `shaft_omega`: the shaft's spin to use.
+  void RelativeVelocity(const DissipativeForce& d,
+                        double shaft_omega,
+                        double* vx,
+                        double* vy) const;
+  // Books the second half step of the last step's dissipative forces (velocities v^(n+1/2)).
+  void BookPendingDissipation();
 
   Scene scene_;
   HybridOptions options_;
@@ -192,10 +221,14 @@ class RollerContacts {
   std::vector<double> outer_force_, inner_force_, cage_force_;
   double dt_prev_ = 0, potential_ = 0, kinetic_ = 0, friction_work_ = 0, damping_work_ = 0,
          external_work_ = 0;
+  // The last step's second half of the load and drive work (booked in external_work_ already),
+  // the rigid bodies' kinetic energy at t^n, and the dissipative forces whose second half is due.
+  double external_half_ = 0, centred_kinetic_ = 0;
+  std::vector<DissipativeForce> pending_;
 
   // Per step.
   OuterRace* race_ = nullptr;
-  double dt_ = 0, omega_s_ = 0, step_potential_ = 0, centred_kinetic_ = 0;
+  double dt_ = 0, dt_avg_ = 0, omega_s_ = 0, step_potential_ = 0;
   double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
          cage_torque_ = 0;
   std::vector<double> fx_, fy_, torque_;  // per roller
