@@ -238,7 +238,22 @@ double RollerContacts::Contact(
     int j, Counter body, bool palmgren, RacePoint* pts, int npts, double* spring, double scale) {
   const double zeta = options_.contact_damping_ratio;
   const double dt = dt_;
+  // Friction and damping work: f^n . (v^(n-1/2) + v^(n+1/2)) / 2 dt_avg, the work the central
+  // differences give these forces (with v^(n-1/2) alone it is first order in the step).
+  const double half = 0.5 * (0.5 * (dt_prev_ + dt));
   const Body& b = rollers_[j];
+  auto Defer = [&](const RacePoint& p, double fx, double fy, int friction) {
+    DissipativeForce d;
+    d.fx = fx, d.fy = fy;
+    d.ax = p.px - b.x, d.ay = p.py - b.y;
+    d.px = p.px, d.py = p.py;
+    const Body& c = body == Counter::kShaft ? shaft_ : cage_;
+    d.bx = p.px - c.x, d.by = p.py - c.y;
+    d.omega = body == Counter::kShaft ? omega_s_ : 0.0;
+    d.weight = half;
+    d.roller = j, d.counter = static_cast<int>(body), d.friction = friction;
+    pending_.push_back(d);
+  };
   // Damping of each contact: a fraction of ITS critical value, i.e. with the reduced mass of
   // the roller and the counter body (LS-DYNA's viscous contact damping does the same with the
   // slave and master nodal masses); for the outer race, its effective contact mass.
@@ -267,7 +282,9 @@ double RollerContacts::Contact(
     const double rate = -(rvx * p.nx + rvy * p.ny);  // d delta / dt
     const double c = 2.0 * zeta * std::sqrt(kn * m);
     q[k] = std::max(0.0, qe + c * rate);
-    damping_work_ += (q[k] - qe) * rate * dt;
+    // Damping work, first half (v^(n-1/2)); the second half in FinishDissipation.
+    damping_work_ += (q[k] - qe) * rate * half;
+    Defer(p, (q[k] - qe) * p.nx, (q[k] - qe) * p.ny, 0);
     q_total += q[k];
     kn_total += kn;
     vt_acc += q[k] * (rvx * tx + rvy * ty);
@@ -285,11 +302,12 @@ double RollerContacts::Contact(
   const double fs = contact::ReturnMap(*spring, vt * dt, kt, cap).force;
   const double f = std::clamp(fs - ct * vt, -cap, cap);
   *spring = fs;
-  friction_work_ -= f * vt * dt;
+  friction_work_ -= f * vt * half;
   for (int k = 0; k < npts; ++k) {
     if (!(q[k] > 0)) continue;
     const RacePoint& p = pts[k];
     const double ft = f * q[k] / q_total;
+    Defer(p, ft * tx, ft * ty, 1);
     const double fx = q[k] * p.nx + ft * tx, fy = q[k] * p.ny + ft * ty;
     fx_[j] += fx, fy_[j] += fy;
     torque_[j] += (p.px - b.x) * fy - (p.py - b.y) * fx;
@@ -399,8 +417,27 @@ void RollerContacts::CageContacts(int j) {
   }
 }
 
+void RollerContacts::FinishDissipation() {
+  for (const DissipativeForce& d : pending_) {
+    const Body& b = rollers_[d.roller];
+    const double vrx = b.vx - b.omega * d.ay, vry = b.vy + b.omega * d.ax;
+    double vcx, vcy;
+    if (d.counter == static_cast<int>(Counter::kOuterRace)) {
+      race_->Velocity(d.px, d.py, &vcx, &vcy);
+    } else {
+      const Body& c = d.counter == static_cast<int>(Counter::kShaft) ? shaft_ : cage_;
+      const double w = d.counter == static_cast<int>(Counter::kShaft) ? d.omega : c.omega;
+      vcx = c.vx - w * d.by, vcy = c.vy + w * d.bx;
+    }
+    const double work = -(d.fx * (vrx - vcx) + d.fy * (vry - vcy)) * d.weight;
+    (d.friction ? friction_work_ : damping_work_) += work;
+  }
+  pending_.clear();
+}
+
 void RollerContacts::Step(OuterRace& race, double t, double dt) {
   race_ = &race;
+  FinishDissipation();
   dt_ = dt;
   omega_s_ = speed_(t);
   shaft_fx_ = shaft_fy_ = shaft_torque_ = cage_fx_ = cage_fy_ = cage_torque_ = 0.0;
@@ -473,13 +510,14 @@ std::string RollerContacts::SaveState() const {
     for (double x : *v) out.Put(x);
   for (double x : {dt_prev_, potential_, kinetic_, friction_work_, damping_work_, external_work_})
     out.Put(x);
+  out.PutVector(pending_);
   return out.Take();
 }
 
 void RollerContacts::LoadState(const std::string& bytes) {
   const size_t z = rollers_.size();
   const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 6;
-  if (bytes.size() != n * sizeof(double))
+  if (bytes.size() < n * sizeof(double))
     throw InputError("roller contacts: checkpoint state has the wrong size");
   CheckpointReader in(bytes, "roller contacts: checkpoint state");
   auto get_body = [&](Body* b) {
@@ -493,6 +531,11 @@ void RollerContacts::LoadState(const std::string& bytes) {
   for (double* x :
        {&dt_prev_, &potential_, &kinetic_, &friction_work_, &damping_work_, &external_work_})
     *x = in.Get<double>();
+  pending_ = in.GetVector<DissipativeForce>();
+  for (const DissipativeForce& d : pending_)
+    if (d.roller < 0 || d.roller >= static_cast<int>(z) || d.counter < 0 || d.counter > 2)
+      throw InputError("roller contacts: checkpoint state has a bad pending contact force");
+  if (!in.AtEnd()) throw InputError("roller contacts: checkpoint state has the wrong size");
 }
 
 }  // namespace spallkit::sim

@@ -168,6 +168,21 @@ class RollerContacts {
   void CageContacts(int j);
   // Central-difference update of every rigid body and the energy books.
   void Integrate(double t, double dt);
+  // Work of step n-1's friction and damping forces on the velocities v^(n-1/2) (the second half
+  // of the central-difference work f . (v^(n-3/2) + v^(n-1/2)) / 2 dt_avg).
+  void FinishDissipation();
+
+  // A friction or damping force of one contact at step n, kept for the second half of its work
+  // (FinishDissipation at the next step, when every body's v^(n+1/2) is known).
+  struct DissipativeForce {
+    double fx, fy;    // on the roller (N)
+    double ax, ay;    // contact point - roller mass centre (x^n)
+    double px, py;    // contact point (world, x^n): the outer race's velocity is read there
+    double bx, by;    // contact point - counter body's centre (x^n)
+    double omega;     // counter body's spin used (the shaft's prescribed speed at t^n)
+    double weight;    // dt_avg / 2 of step n
+    int roller, counter, friction;  // friction: 1, damping: 0
+  };
 
   Scene scene_;
   HybridOptions options_;
@@ -192,6 +207,7 @@ class RollerContacts {
   std::vector<double> outer_force_, inner_force_, cage_force_;
   double dt_prev_ = 0, potential_ = 0, kinetic_ = 0, friction_work_ = 0, damping_work_ = 0,
          external_work_ = 0;
+  std::vector<DissipativeForce> pending_;  // this step's, for their second half
 
   // Per step.
   OuterRace* race_ = nullptr;
