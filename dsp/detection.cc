@@ -7,6 +7,8 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "core/multiversion.h"
+#include "dsp/vector_math.h"
 
 namespace spallkit::dsp {
 
@@ -53,19 +55,21 @@ bool FamilyDetection::family_evidence() const {
 namespace {
 
 // -ln p of the larger of bins (i, i + 1) (NormalizedSpectrum::PairPValue), capped. With
-// L = -ln q = n log1p(z / n) (BinTail) and p = q (2 - q): -ln p = L - log1p(1 - q), which avoids a
-// log of p near 1 (glibc's slow path there made it the costliest call of the comb search); the
-// cap is at most -ln 1e-300, as p was floored there.
-double PairScoreOf(double z0, double z1, double n_eff, double cap) {
-  const double zmax = std::max(z0, z1);
-  if (!(zmax > 0.0)) return 0.0;
-  const double minus_log_q = n_eff * std::log1p(zmax / n_eff);
-  const double q = std::exp(-minus_log_q);
-  return std::min(minus_log_q - std::log1p(1.0 - q), cap);
+// L = -ln q = n log1p(z / n) (BinTail) and p = q (2 - q): -ln p = L - ln(2 - q), which avoids a
+// log of p near 1; the cap is at most -ln 1e-300, as p was floored there. Branch-free with the
+// vectorisable log and exp of dsp/vector_math.h (z <= 0 or NaN gives 0; z / n is capped at
+// 1e300, where the score is capped anyway), so the loop over the bins vectorises.
+inline double PairScoreOf(double z0, double z1, double n_eff, double cap) {
+  const double zmax = z0 < z1 ? z1 : z0;  // std::max: NaN in z0 is kept, then gives 0
+  const double y = zmax > 0.0 ? std::min(zmax / n_eff, 1e300) : 0.0;
+  const double minus_log_q = n_eff * Log1pNonNegative(y);
+  const double q = ExpNonPositive(-minus_log_q);
+  return std::min(minus_log_q - LogAtLeastOne(2.0 - q), cap);
 }
 
 }  // namespace
 
+SPALLKIT_MULTIVERSION
 std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
                                const DetectionOptions& options) {
   const int nbins = static_cast<int>(spectrum.z.size());

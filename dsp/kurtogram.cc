@@ -13,6 +13,7 @@
 #endif
 
 #include "core/error.h"
+#include "core/multiversion.h"
 
 namespace spallkit::dsp {
 namespace {
@@ -227,6 +228,9 @@ void ZeroOutsideBins(int lo, int hi, int m, std::complex<float>* out) {
 //   odd samples   c_p(2s+1) = IFFT_{m_c}(Y_k e^{2 pi i k / m_p})(s),
 // so a parent costs one transform of half its size plus an addition: every row but the deepest
 // costs half of a direct computation, for the same exact samples.
+// Multi-versioned (core/multiversion.h): the shuffles and moment sums of the loops below are
+// written for 256-bit vectors, which the baseline instruction set splits and spills.
+SPALLKIT_MULTIVERSION
 void ProcessChain(const std::complex<float>* xf,
                   int n,
                   double empty_energy,
