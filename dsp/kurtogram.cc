@@ -106,12 +106,11 @@ void StoreSquaredEnvelopes(const std::complex<float>* env, size_t count, std::ve
 
 // Per-thread buffers, kept between calls and grown on demand: a 10 s record at 48 kHz needs
 // ~20 MB of them, and fresh allocations of that size cost page faults on every call (10 % of the
-// run time); the root table is also kept while the record length stays the same.
+// run time).
 struct ChainBuffers {
   size_t row_size = 0, node_size = 0;
   FftwArray<std::complex<float>> child, parent;  // all envelopes of a row, node after node
   FftwArray<std::complex<float>> in, odd;        // one node's transform input and output
-  std::vector<std::complex<float>> roots;        // e^{2 pi i j / m_top}
   std::vector<std::complex<float>> row_roots;    // the current row's e^{2 pi i j / m_p}
   std::unique_ptr<double[]> power;
 };
@@ -275,18 +274,14 @@ void ProcessChain(const std::complex<float>* xf,
   }
   if (chain.size() == 1) return;
 
-  // e^{2 pi i j / m_top}, j < m_top (kept while m_top stays the same); a row with
-  // m_p = m_top / q uses every q-th entry.
-  if (b.roots.size() != static_cast<size_t>(m_top)) UnitRoots(m_top, &b.roots);
   for (size_t level = 1; level < chain.size(); ++level) {
     const ChainRow& up = chain[level];
     const int mp = up.m, mc = up.m / 2;
-    const int stride = m_top / mp;
     ComplexFftF fft(mc, +1);
-    // This row's roots, e^{2 pi i j / m_p} = roots[j * stride], gathered once into a contiguous
-    // table: read in place, every bin's factor would be its own cache line of the m_top table.
-    b.row_roots.resize(mp);
-    for (int j = 0; j < mp; ++j) b.row_roots[j] = b.roots[static_cast<size_t>(j) * stride];
+    // This row's roots, e^{2 pi i j / m_p}, made for the row (UnitRoots writes them in order; a
+    // table of the top row read at a stride would cost a cache line per bin for the deep rows and
+    // a full copy for the top one).
+    UnitRoots(mp, &b.row_roots);
     std::vector<double>& row = (*result)[up.row];
     row.assign(up.nodes, 0.0);
     std::complex<float>* odd = in + mc;  // second half of the node buffer (size m_top >= 2 mc)
