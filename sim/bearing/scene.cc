@@ -442,7 +442,7 @@ void ReadModel(Section s,
                  "that needs model.fidelity = \"hybrid\"");
   // The lubricant traction needs the contact's entrainment speed, which the rigid rollers have
   // and the FE's node-to-surface contact does not.
-  if (model->fidelity == "fe" && friction.model != contact::TractionModel::kCoulomb)
+  if (model->fidelity == Fidelity::kFe && friction.model != contact::TractionModel::kCoulomb)
     s.Fail("fidelity",
            "friction.model = \"ehl\" needs model.fidelity = \"hybrid\" or \"lumped\" (the "
            "full FE has Coulomb friction only)");
