@@ -8,6 +8,7 @@
 #include "dsp/envelope.h"
 #include "dsp/kurtogram.h"
 #include "dsp/prewhiten.h"
+#include "dsp/record_check.h"
 #include "dsp/spectra.h"
 #include "dsp/statistics.h"
 #include "tests/dsp/spectral_test_signals.h"
@@ -116,6 +117,14 @@ void BM_TimeStatistics(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(ComputeTimeStatistics(x).kurtosis);
 }
 BENCHMARK(BM_TimeStatistics)->Unit(benchmark::kMillisecond);
+
+// The record checks before a diagnosis: finiteness, range, median and MAD of every 4th sample,
+// outliers, clipping.
+void BM_CheckRecord(benchmark::State& state) {
+  const auto& x = Signal();
+  for (auto _ : state) benchmark::DoNotOptimize(CheckRecord(x).robust_sigma);
+}
+BENCHMARK(BM_CheckRecord)->Unit(benchmark::kMillisecond);
 
 void BM_CepstrumPrewhiten(benchmark::State& state) {
   const auto& x = Signal();

@@ -6,15 +6,84 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/multiversion.h"
+#include "dsp/order_statistic.h"
 
 namespace spallkit::dsp {
+
+namespace {
+
+// Smallest and largest sample and whether every sample is finite, in one pass that vectorises
+// (x - x is 0 for a finite sample and NaN otherwise; min and max are taken on values).
+SPALLKIT_MULTIVERSION
+bool FiniteRange(const double* x, size_t n, double* lo, double* hi) {
+  double check = 0.0, mn = x[0], mx = x[0];
+  for (size_t i = 0; i < n; ++i) {
+    check += x[i] - x[i];
+    mn = x[i] < mn ? x[i] : mn;
+    mx = x[i] > mx ? x[i] : mx;
+  }
+  *lo = mn;
+  *hi = mx;
+  return check == 0.0;
+}
+
+// Samples with |x - median| > limit (a count that vectorises; the scan for the largest one only
+// runs when there is any).
+SPALLKIT_MULTIVERSION
+int CountBeyond(const double* x, size_t n, double median, double limit) {
+  int count = 0;
+  for (size_t i = 0; i < n; ++i) count += std::abs(x[i] - median) > limit;
+  return count;
+}
+
+// Runs of >= run_length samples equal to hi, plus those equal to lo, in one pass: blocks with no
+// sample at either rail (nearly all of them) are skipped with a test that vectorises, and a run
+// is counted where it ends, so runs across block edges are counted once.
+SPALLKIT_MULTIVERSION
+int ClippedRuns(const double* x, size_t n, double lo, double hi, int run_length) {
+  constexpr size_t kBlock = 256;
+  int runs = 0, run_hi = 0, run_lo = 0;
+  auto end_runs = [&] {
+    runs += (run_hi >= run_length) + (run_lo >= run_length);
+    run_hi = run_lo = 0;
+  };
+  for (size_t start = 0; start < n; start += kBlock) {
+    const size_t stop = std::min(n, start + kBlock);
+    int hits = 0;
+    for (size_t i = start; i < stop; ++i) hits += (x[i] == hi) | (x[i] == lo);
+    if (hits == 0) {
+      end_runs();
+      continue;
+    }
+    for (size_t i = start; i < stop; ++i) {
+      if (x[i] == hi) {
+        ++run_hi;
+      } else {
+        runs += run_hi >= run_length;
+        run_hi = 0;
+      }
+      if (x[i] == lo) {
+        ++run_lo;
+      } else {
+        runs += run_lo >= run_length;
+        run_lo = 0;
+      }
+    }
+  }
+  end_runs();
+  return runs;
+}
+
+}  // namespace
 
 RecordCheck CheckRecord(std::span<const double> x, const RecordCheckOptions& options) {
   if (x.empty()) throw InputError("diagnose: the record is empty");
   const size_t n = x.size();
   double lo = x[0], hi = x[0];
-  for (size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(x[i])) {
+  if (!FiniteRange(x.data(), n, &lo, &hi)) {
+    for (size_t i = 0; i < n; ++i) {
+      if (std::isfinite(x[i])) continue;
       char buf[160];
       std::snprintf(buf,
                     sizeof buf,
@@ -23,8 +92,6 @@ RecordCheck CheckRecord(std::span<const double> x, const RecordCheckOptions& opt
                     x[i]);
       throw InputError(buf);
     }
-    lo = std::min(lo, x[i]);
-    hi = std::max(hi, x[i]);
   }
   // Constant: no spread beyond the rounding of the values themselves.
   if (!(hi - lo > 1e-12 * std::max(std::abs(hi), std::abs(lo))) || hi == lo) {
@@ -43,24 +110,21 @@ RecordCheck CheckRecord(std::span<const double> x, const RecordCheckOptions& opt
   std::vector<double> v;
   v.reserve(n / stride + 1);
   for (size_t i = 0; i < n; i += stride) v.push_back(x[i]);
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  const double median = v[mid];
+  const int count = static_cast<int>(v.size()), mid = count / 2;
+  std::vector<double> scratch(3 * (static_cast<size_t>(count) + 8));
+  const double median = SelectKth(v.data(), count, mid, scratch.data());
   for (double& e : v) e = std::abs(e - median);
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  c.robust_sigma = 1.4826 * v[mid];
+  c.robust_sigma = 1.4826 * SelectKth(v.data(), count, mid, scratch.data());
   char buf[256];
   if (c.robust_sigma > 0.0) {
     const double limit = options.outlier_sigmas * c.robust_sigma;
+    c.outliers = CountBeyond(x.data(), n, median, limit);
     double largest = 0.0;
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = 0; i < n && c.outliers > 0; ++i) {
       const double d = std::abs(x[i] - median);
-      if (d > limit) {
-        ++c.outliers;
-        if (d > largest) {
-          largest = d;
-          c.largest_outlier_index = static_cast<long>(i);
-        }
+      if (d > limit && d > largest) {
+        largest = d;
+        c.largest_outlier_index = static_cast<long>(i);
       }
     }
     if (c.outliers > 0) {
@@ -80,17 +144,7 @@ RecordCheck CheckRecord(std::span<const double> x, const RecordCheckOptions& opt
         "more than half of the samples have the same value: a stuck or mostly silent channel");
   }
   // Clipping: runs of samples stuck at either extreme.
-  for (const double rail : {hi, lo}) {
-    int run = 0;
-    for (size_t i = 0; i <= n; ++i) {
-      if (i < n && x[i] == rail) {
-        ++run;
-      } else {
-        if (run >= options.clip_run) ++c.clipped_runs;
-        run = 0;
-      }
-    }
-  }
+  c.clipped_runs = ClippedRuns(x.data(), n, lo, hi, options.clip_run);
   if (c.clipped_runs >= options.clip_runs) {
     std::snprintf(buf,
                   sizeof buf,

@@ -229,4 +229,21 @@ void DrawTitleAndAxisLabels(cv::Mat& img,
   }
 }
 
+void DrawXTick(
+    cv::Mat& img, const Style& st, int px, int y0, int len, int pad, const std::string& label) {
+  cv::line(img, {px, y0}, {px, y0 + len}, kBlack, 1);
+  Text(img, label, px, y0 + len + pad / 2, st.tick(), kText, 1, HAlign::kCenter, VAlign::kTop);
+}
+
+void DrawYTick(cv::Mat& img,
+               const Style& st,
+               int py,
+               int x_end,
+               int len,
+               int label_x,
+               const std::string& label) {
+  cv::line(img, {x_end - len, py}, {x_end, py}, kBlack, 1);
+  Text(img, label, label_x, py, st.tick(), kText, 1, HAlign::kRight, VAlign::kMiddle);
+}
+
 }  // namespace spallkit::plot::internal

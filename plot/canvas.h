@@ -114,6 +114,20 @@ void DrawTitleAndAxisLabels(cv::Mat& img,
                             const std::string& x_label,
                             const std::string& y_label);
 
+// A tick below the plot area: a mark of `len` pixels down from (px, y0) and its label centred
+// under it, `pad` / 2 lower.
+void DrawXTick(
+    cv::Mat& img, const Style& st, int px, int y0, int len, int pad, const std::string& label);
+// A tick left of the plot area: a mark from (x_end - len, py) to (x_end, py) and its label
+// right-aligned at x = label_x, centred on py.
+void DrawYTick(cv::Mat& img,
+               const Style& st,
+               int py,
+               int x_end,
+               int len,
+               int label_x,
+               const std::string& label);
+
 // Renders with `render` and writes the PNG atomically; a bad plot spec is reported with the path.
 template <typename Render>
 void RenderToFile(const std::string& png_path, Render render) {

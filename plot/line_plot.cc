@@ -297,23 +297,12 @@ void DrawFrameAndTicks(
   const int tl = st.tick_len();
   for (const Tick& t : xticks) {
     const int px = static_cast<int>(std::lround(ax.ToPixel(t.value)));
-    const int y0 = area.y + area.height;
-    cv::line(img, {px, y0}, {px, y0 + tl}, kBlack, 1);
-    Text(img, t.label, px, y0 + tl + pad / 2, st.tick(), kText, 1, HAlign::kCenter, VAlign::kTop);
+    DrawXTick(img, st, px, area.y + area.height, tl, pad, t.label);
   }
   for (const Tick& t : yticks) {
     const int py = static_cast<int>(std::lround(ay.ToPixel(t.value)));
-    const int len = t.label.empty() ? tl / 2 : tl;
-    cv::line(img, {area.x - len, py}, {area.x, py}, kBlack, 1);
-    Text(img,
-         t.label,
-         area.x - tl - pad / 2,
-         py,
-         st.tick(),
-         kText,
-         1,
-         HAlign::kRight,
-         VAlign::kMiddle);
+    const int len = t.label.empty() ? tl / 2 : tl;  // minor ticks are shorter
+    DrawYTick(img, st, py, area.x, len, area.x - tl - pad / 2, t.label);
   }
 }
 

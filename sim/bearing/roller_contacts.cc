@@ -101,6 +101,10 @@ RollerContacts::RollerContacts(const Scene& scene,
     centroid_x_.push_back(cx);
     centroid_y_.push_back(cy);
     pocket_angle_.push_back(phi);
+    pocket_cos_.push_back(std::cos(phi));
+    pocket_sin_.push_back(std::sin(phi));
+    directions_.emplace_back(p);
+    intact_directions_.emplace_back(intact_profiles_.back());
     Body b;
     b.x = housing.pitch_radius_m * std::cos(phi) + cx;
     b.y = housing.pitch_radius_m * std::sin(phi) + cy;
@@ -183,27 +187,30 @@ void RollerContacts::RollerCentre(int j, double* x, double* y) const {
   *y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
 }
 
-int RollerContacts::RacePoints(int j, int which, const RollerProfile& p, RacePoint out[2]) const {
+int RollerContacts::RacePoints(int j,
+                               int which,
+                               const RollerProfile& p,
+                               const ProfileDirections& dirs,
+                               RacePoint out[2]) const {
   // Positions only; the outer race radius is filled in by the caller (needs the nodal state).
-  const Body& b = rollers_[j];
   const double cx = centre_x_[j], cy = centre_y_[j];
   double dx, dy;  // unit direction from the roller centre towards the race contact
   if (which == 0) {
-    const double d = std::hypot(cx, cy);
+    const double d = std::sqrt(cx * cx + cy * cy);
     dx = cx / d, dy = cy / d;
   } else {
-    const double ex = shaft_.x - cx, ey = shaft_.y - cy, d = std::hypot(ex, ey);
+    const double ex = shaft_.x - cx, ey = shaft_.y - cy, d = std::sqrt(ex * ex + ey * ey);
     dx = ex / d, dy = ey / d;
   }
-  if (!p.spalled || !p.InSpall(std::atan2(dy, dx) - b.angle)) {
+  const double c = cos_[j], s = sin_[j];
+  if (!p.spalled || !dirs.InSpall(c * dx + s * dy, c * dy - s * dx)) {
     out[0] = {cx + p.radius * dx, cy + p.radius * dy, -dx, -dy, 0.0};
     return 1;
   }
   // Rim edges: the fillet centres (the corners for sharp edges); the caller offsets them by
   // the fillet radius along the race normal through each.
-  double kx[2], ky[2];
-  p.RimCorners(kx, ky);
-  const double c = cos_[j], s = sin_[j];
+  const double* kx = dirs.corner_x();
+  const double* ky = dirs.corner_y();
   for (int k = 0; k < 2; ++k)
     out[k] = {cx + c * kx[k] - s * ky[k], cy + s * kx[k] + c * ky[k], -dx, -dy, 0.0};
   return 2;
@@ -238,7 +245,22 @@ double RollerContacts::Contact(
     int j, Counter body, bool palmgren, RacePoint* pts, int npts, double* spring, double scale) {
   const double zeta = options_.contact_damping_ratio;
   const double dt = dt_;
+  // Friction and damping work: f^n . (v^(n-1/2) + v^(n+1/2)) / 2 dt_avg, the work the central
+  // differences give these forces (with v^(n-1/2) alone it is first order in the step).
+  const double half = 0.5 * (0.5 * (dt_prev_ + dt));
   const Body& b = rollers_[j];
+  auto Defer = [&](const RacePoint& p, double fx, double fy, int friction) {
+    DissipativeForce d;
+    d.fx = fx, d.fy = fy;
+    d.ax = p.px - b.x, d.ay = p.py - b.y;
+    d.px = p.px, d.py = p.py;
+    const Body& c = body == Counter::kShaft ? shaft_ : cage_;
+    d.bx = p.px - c.x, d.by = p.py - c.y;
+    d.omega = body == Counter::kShaft ? omega_s_ : 0.0;
+    d.weight = half;
+    d.roller = j, d.counter = static_cast<int>(body), d.friction = friction;
+    pending_.push_back(d);
+  };
   // Damping of each contact: a fraction of ITS critical value, i.e. with the reduced mass of
   // the roller and the counter body (LS-DYNA's viscous contact damping does the same with the
   // slave and master nodal masses); for the outer race, its effective contact mass.
@@ -267,7 +289,9 @@ double RollerContacts::Contact(
     const double rate = -(rvx * p.nx + rvy * p.ny);  // d delta / dt
     const double c = 2.0 * zeta * std::sqrt(kn * m);
     q[k] = std::max(0.0, qe + c * rate);
-    damping_work_ += (q[k] - qe) * rate * dt;
+    // Damping work, first half (v^(n-1/2)); the second half in FinishDissipation.
+    damping_work_ += (q[k] - qe) * rate * half;
+    Defer(p, (q[k] - qe) * p.nx, (q[k] - qe) * p.ny, 0);
     q_total += q[k];
     kn_total += kn;
     vt_acc += q[k] * (rvx * tx + rvy * ty);
@@ -285,11 +309,12 @@ double RollerContacts::Contact(
   const double fs = contact::ReturnMap(*spring, vt * dt, kt, cap).force;
   const double f = std::clamp(fs - ct * vt, -cap, cap);
   *spring = fs;
-  friction_work_ -= f * vt * dt;
+  friction_work_ -= f * vt * half;
   for (int k = 0; k < npts; ++k) {
     if (!(q[k] > 0)) continue;
     const RacePoint& p = pts[k];
     const double ft = f * q[k] / q_total;
+    Defer(p, ft * tx, ft * ty, 1);
     const double fx = q[k] * p.nx + ft * tx, fy = q[k] * p.ny + ft * ty;
     fx_[j] += fx, fy_[j] += fy;
     torque_[j] += (p.px - b.x) * fy - (p.py - b.y) * fx;
@@ -298,7 +323,8 @@ double RollerContacts::Contact(
   return q_total;
 }
 
-void RollerContacts::RaceContacts(int j, const RollerProfile& prof, double scale, int slot) {
+void RollerContacts::RaceContacts(
+    int j, const RollerProfile& prof, const ProfileDirections& dirs, double scale, int slot) {
   RacePoint pts[2];
   // Outer race. A profile point is a circle of radius rad around a centre q (the roller's
   // circle, or a rim fillet: its centre and radius, a corner with radius 0); the race gives its
@@ -308,7 +334,7 @@ void RollerContacts::RaceContacts(int j, const RollerProfile& prof, double scale
   const double rho = prof.edge_radius;
   const double cx = centre_x_[j], cy = centre_y_[j];
   if (race_->MayTouch(cx, cy, prof.radius + kReachMargin)) {
-    int n = RacePoints(j, 0, prof, pts);
+    int n = RacePoints(j, 0, prof, dirs, pts);
     double qx[2], qy[2], rad[2];
     if (n == 1) {
       qx[0] = cx, qy[0] = cy;
@@ -322,13 +348,15 @@ void RollerContacts::RaceContacts(int j, const RollerProfile& prof, double scale
     friction_[slot] = 0.0;
   }
   // Inner race (rigid ring on the shaft).
-  if (inner_radius_ - std::hypot(shaft_.x - cx, shaft_.y - cy) + prof.radius < -kReachMargin) {
+  const double sx = shaft_.x - cx, sy = shaft_.y - cy;
+  if (inner_radius_ - std::sqrt(sx * sx + sy * sy) + prof.radius < -kReachMargin) {
     friction_[slot + 1] = 0.0;
     return;
   }
-  const int n = RacePoints(j, 1, prof, pts);
+  const int n = RacePoints(j, 1, prof, dirs, pts);
   for (int k = 0; k < n; ++k) {
-    const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y, d = std::hypot(ex, ey);
+    const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y;
+    const double d = std::sqrt(ex * ex + ey * ey);
     if (n == 2) {  // rim edge: normal through the fillet centre, surface point rho closer
       pts[k].nx = ex / d, pts[k].ny = ey / d;
       pts[k].px -= rho * pts[k].nx, pts[k].py -= rho * pts[k].ny;
@@ -344,8 +372,9 @@ void RollerContacts::CageContacts(int j) {
   const double f = spall_fraction_[j];
   // Cage pocket walls: straight lines +-W/2 from the pocket's centre line.
   const double cx = centre_x_[j], cy = centre_y_[j];
-  const double psi = pocket_angle_[j] + cage_.angle;
-  const double ex = std::cos(psi), ey = std::sin(psi);
+  // Pocket centre line (cos, sin of pocket angle + cage angle).
+  const double ex = pocket_cos_[j] * cage_cos_ - pocket_sin_[j] * cage_sin_;
+  const double ey = pocket_sin_[j] * cage_cos_ + pocket_cos_[j] * cage_sin_;
   const double twx = -ey, twy = ex;
   const double lateral = (cx - cage_.x) * twx + (cy - cage_.y) * twy;
   // The force acts at the profile's extreme point towards the wall (a rim edge when the spall
@@ -353,15 +382,17 @@ void RollerContacts::CageContacts(int j) {
   // intact part of a partial-length spall reaches further than the notched part. Every profile
   // point is inside the circle: a wall the circle does not reach has no contact.
   const RollerProfile& wall_prof = f < 1.0 ? intact_profiles_[j] : profiles_[j];
+  const ProfileDirections& wall_dirs = f < 1.0 ? intact_directions_[j] : directions_[j];
   const double reach = wall_prof.radius - pocket_half_width_ + kReachMargin;
-  const double a_lead = psi + 0.5 * kPi - rollers_[j].angle;
   const double rc = cos_[j], rs = sin_[j];
+  // Direction of the leading wall's normal (tw) in the roller's frame.
+  const double ux = rc * twx + rs * twy, uy = rc * twy - rs * twx;
   double* lead_spring = &friction_[kFrictionSlots * j + 2];
   double* trail_spring = &friction_[kFrictionSlots * j + 3];
   double q_lead = 0.0, q_trail = 0.0;
   if (lateral + reach > 0) {
     double lx, ly;
-    const double h_lead = wall_prof.SupportPoint(a_lead, &lx, &ly);
+    const double h_lead = wall_dirs.SupportPoint(ux, uy, &lx, &ly);
     RacePoint lead{cx + rc * lx - rs * ly,
                    cy + rs * lx + rc * ly,
                    -twx,
@@ -373,7 +404,7 @@ void RollerContacts::CageContacts(int j) {
   }
   if (-lateral + reach > 0) {
     double kx, ky;
-    const double h_trail = wall_prof.SupportPoint(a_lead + kPi, &kx, &ky);
+    const double h_trail = wall_dirs.SupportPoint(-ux, -uy, &kx, &ky);
     RacePoint trail{cx + rc * kx - rs * ky,
                     cy + rs * kx + rc * ky,
                     twx,
@@ -399,8 +430,27 @@ void RollerContacts::CageContacts(int j) {
   }
 }
 
+void RollerContacts::FinishDissipation() {
+  for (const DissipativeForce& d : pending_) {
+    const Body& b = rollers_[d.roller];
+    const double vrx = b.vx - b.omega * d.ay, vry = b.vy + b.omega * d.ax;
+    double vcx, vcy;
+    if (d.counter == static_cast<int>(Counter::kOuterRace)) {
+      race_->Velocity(d.px, d.py, &vcx, &vcy);
+    } else {
+      const Body& c = d.counter == static_cast<int>(Counter::kShaft) ? shaft_ : cage_;
+      const double w = d.counter == static_cast<int>(Counter::kShaft) ? d.omega : c.omega;
+      vcx = c.vx - w * d.by, vcy = c.vy + w * d.bx;
+    }
+    const double work = -(d.fx * (vrx - vcx) + d.fy * (vry - vcy)) * d.weight;
+    (d.friction ? friction_work_ : damping_work_) += work;
+  }
+  pending_.clear();
+}
+
 void RollerContacts::Step(OuterRace& race, double t, double dt) {
   race_ = &race;
+  FinishDissipation();
   dt_ = dt;
   omega_s_ = speed_(t);
   shaft_fx_ = shaft_fy_ = shaft_torque_ = cage_fx_ = cage_fy_ = cage_torque_ = 0.0;
@@ -408,6 +458,7 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
   std::fill(fx_.begin(), fx_.end(), 0.0);
   std::fill(fy_.begin(), fy_.end(), 0.0);
   std::fill(torque_.begin(), torque_.end(), 0.0);
+  cage_cos_ = std::cos(cage_.angle), cage_sin_ = std::sin(cage_.angle);
   for (int j = 0; j < num_rollers(); ++j) {
     const Body& b = rollers_[j];
     cos_[j] = std::cos(b.angle), sin_[j] = std::sin(b.angle);
@@ -417,8 +468,10 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
   for (int j = 0; j < num_rollers(); ++j) {
     const double f = spall_fraction_[j];
     outer_force_[j] = inner_force_[j] = 0.0;
-    RaceContacts(j, profiles_[j], f, kFrictionSlots * j);
-    if (f < 1.0) RaceContacts(j, intact_profiles_[j], 1.0 - f, kFrictionSlots * j + 4);
+    RaceContacts(j, profiles_[j], directions_[j], f, kFrictionSlots * j);
+    if (f < 1.0)
+      RaceContacts(
+          j, intact_profiles_[j], intact_directions_[j], 1.0 - f, kFrictionSlots * j + 4);
     CageContacts(j);
   }
   potential_ = step_potential_;
@@ -473,13 +526,14 @@ std::string RollerContacts::SaveState() const {
     for (double x : *v) out.Put(x);
   for (double x : {dt_prev_, potential_, kinetic_, friction_work_, damping_work_, external_work_})
     out.Put(x);
+  out.PutVector(pending_);
   return out.Take();
 }
 
 void RollerContacts::LoadState(const std::string& bytes) {
   const size_t z = rollers_.size();
   const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 6;
-  if (bytes.size() != n * sizeof(double))
+  if (bytes.size() < n * sizeof(double))
     throw InputError("roller contacts: checkpoint state has the wrong size");
   CheckpointReader in(bytes, "roller contacts: checkpoint state");
   auto get_body = [&](Body* b) {
@@ -493,6 +547,11 @@ void RollerContacts::LoadState(const std::string& bytes) {
   for (double* x :
        {&dt_prev_, &potential_, &kinetic_, &friction_work_, &damping_work_, &external_work_})
     *x = in.Get<double>();
+  pending_ = in.GetVector<DissipativeForce>();
+  for (const DissipativeForce& d : pending_)
+    if (d.roller < 0 || d.roller >= static_cast<int>(z) || d.counter < 0 || d.counter > 2)
+      throw InputError("roller contacts: checkpoint state has a bad pending contact force");
+  if (!in.AtEnd()) throw InputError("roller contacts: checkpoint state has the wrong size");
 }
 
 }  // namespace spallkit::sim

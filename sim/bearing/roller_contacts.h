@@ -147,7 +147,11 @@ class RollerContacts {
   enum class Counter { kOuterRace, kShaft, kCage };
   // Candidate points of roller j against the outer (which = 0) or inner (1) race: positions of
   // the circle centre or the two rim fillet centres, normal along the centre line.
-  int RacePoints(int j, int which, const RollerProfile& profile, RacePoint out[2]) const;
+  int RacePoints(int j,
+                 int which,
+                 const RollerProfile& profile,
+                 const ProfileDirections& dirs,
+                 RacePoint out[2]) const;
   void CounterVelocity(Counter body, double px, double py, double* vx, double* vy) const;
   void ApplyCounter(Counter body, double px, double py, double fx, double fy);
   // One contact (1 or 2 points) of roller j with a counter body: normal force (Palmgren or the
@@ -163,11 +167,27 @@ class RollerContacts {
                  double scale = 1.0);
   // Both race contacts of roller j for one profile carrying `scale` of the Palmgren stiffness;
   // stick springs friction_[slot], friction_[slot + 1]. Adds to outer_force_ / inner_force_.
-  void RaceContacts(int j, const RollerProfile& profile, double scale, int slot);
+  void RaceContacts(
+      int j, const RollerProfile& profile, const ProfileDirections& dirs, double scale, int slot);
   // Pocket walls and the radial guide of roller j.
   void CageContacts(int j);
   // Central-difference update of every rigid body and the energy books.
   void Integrate(double t, double dt);
+  // Work of step n-1's friction and damping forces on the velocities v^(n-1/2) (the second half
+  // of the central-difference work f . (v^(n-3/2) + v^(n-1/2)) / 2 dt_avg).
+  void FinishDissipation();
+
+  // A friction or damping force of one contact at step n, kept for the second half of its work
+  // (FinishDissipation at the next step, when every body's v^(n+1/2) is known).
+  struct DissipativeForce {
+    double fx, fy;    // on the roller (N)
+    double ax, ay;    // contact point - roller mass centre (x^n)
+    double px, py;    // contact point (world, x^n): the outer race's velocity is read there
+    double bx, by;    // contact point - counter body's centre (x^n)
+    double omega;     // counter body's spin used (the shaft's prescribed speed at t^n)
+    double weight;    // dt_avg / 2 of step n
+    int roller, counter, friction;  // friction: 1, damping: 0
+  };
 
   Scene scene_;
   HybridOptions options_;
@@ -176,9 +196,11 @@ class RollerContacts {
   solver::TimeFunction angle_, speed_, load_;
   std::vector<RollerProfile> profiles_;
   std::vector<RollerProfile> intact_profiles_;  // the same circles without their spalls
+  std::vector<ProfileDirections> directions_, intact_directions_;
   std::vector<double> spall_fraction_;
   std::vector<double> roller_mass_, roller_inertia_, centroid_x_, centroid_y_;  // body frame
   std::vector<double> pocket_angle_;  // pocket j centre line in the cage frame
+  std::vector<double> pocket_cos_, pocket_sin_;
   double cage_mass_ = 0, cage_inertia_ = 0, shaft_mass_ = 0, race_mass_ = 0;
   double pocket_half_width_ = 0, pitch_radius_ = 0, inner_radius_ = 0;
   double k_c_ = 0, dt_limit_ = 0, roller_dt_ = 0, ring_dt_ = 0, bound_normal_stiffness_ = 0;
@@ -192,6 +214,7 @@ class RollerContacts {
   std::vector<double> outer_force_, inner_force_, cage_force_;
   double dt_prev_ = 0, potential_ = 0, kinetic_ = 0, friction_work_ = 0, damping_work_ = 0,
          external_work_ = 0;
+  std::vector<DissipativeForce> pending_;  // this step's, for their second half
 
   // Per step.
   OuterRace* race_ = nullptr;
@@ -199,6 +222,7 @@ class RollerContacts {
   double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
          cage_torque_ = 0;
   std::vector<double> fx_, fy_, torque_;  // per roller
+  double cage_cos_ = 1, cage_sin_ = 0;  // of the cage's angle at x^n
   // Per roller at x^n: cos and sin of its angle, circle centre.
   std::vector<double> cos_, sin_, centre_x_, centre_y_;
 };
