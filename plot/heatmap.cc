@@ -190,17 +190,20 @@ void DrawColorbar(cv::Mat& img,
         std::lround(bar.y + bar.height - 1 - (t.value - v_lo) / (v_hi - v_lo) * (bar.height - 1)));
     const int x0 = bar.x + bar.width;
     cv::line(img, {x0, py}, {x0 + tl, py}, kBlack, 1);
-    Text(img, t.label, x0 + tl + pad / 2, py, st.tick(), kText, 1, HAlign::kLeft, VAlign::kMiddle);
+    Text(img,
+         t.label,
+         cv::Point(x0 + tl + pad / 2, py),
+         {st.tick()},
+         HAlign::kLeft,
+         VAlign::kMiddle);
   }
   if (!map.colorbar_label.empty()) {
     const cv::Size ts = TextSize(map.colorbar_label, st.label(), st.stroke());
-    RotatedText(img,
-                map.colorbar_label,
-                bar.x + bar.width + tl + pad / 2 + ctick_w + pad,
-                bar.y + bar.height / 2 - ts.width / 2,
-                st.label(),
-                kBlack,
-                st.stroke());
+    RotatedText(
+        img,
+        map.colorbar_label,
+        {bar.x + bar.width + tl + pad / 2 + ctick_w + pad, bar.y + bar.height / 2 - ts.width / 2},
+        {st.label(), kBlack, st.stroke()});
   }
 }
 

@@ -259,8 +259,7 @@ std::vector<cv::Rect> DrawMarkers(cv::Mat& inner,
     if (!placed) continue;
     label_boxes.push_back(box);
     // A white halo behind the text keeps it readable over grid and data.
-    RotatedText(
-        inner, m.label, box.x, box.y, scale, Bgr(m.thin ? Lighten(m.color, 0.1) : m.color), 1);
+    RotatedText(inner, m.label, box.tl(), {scale, Bgr(m.thin ? Lighten(m.color, 0.1) : m.color)});
   }
   return label_boxes;
 }
@@ -351,11 +350,8 @@ void DrawLegend(cv::Mat& img,
                  cv::LINE_AA);
         Text(img,
              entries[i]->label,
-             box.x + 2 * pad + sample_w,
-             cy,
-             st.legend(),
-             kText,
-             1,
+             cv::Point(box.x + 2 * pad + sample_w, cy),
+             {st.legend()},
              HAlign::kLeft,
              VAlign::kMiddle);
       }
