@@ -710,6 +710,7 @@ std::string Diagnosis::ToJson(int indent) const {
       lj["p_value"] = l.p_value;
       lj["significant"] = l.significant;
       lj["excluded"] = l.excluded ? ordered_json(l.exclusion) : ordered_json(nullptr);
+      lj["nuisance_snr"] = l.nuisance_z;
       lines.push_back(lj);
     }
     fj["harmonics"] = lines;

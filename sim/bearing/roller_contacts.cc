@@ -101,6 +101,10 @@ RollerContacts::RollerContacts(const Scene& scene,
     centroid_x_.push_back(cx);
     centroid_y_.push_back(cy);
     pocket_angle_.push_back(phi);
+    pocket_cos_.push_back(std::cos(phi));
+    pocket_sin_.push_back(std::sin(phi));
+    directions_.emplace_back(p);
+    intact_directions_.emplace_back(intact_profiles_.back());
     Body b;
     b.x = housing.pitch_radius_m * std::cos(phi) + cx;
     b.y = housing.pitch_radius_m * std::sin(phi) + cy;
@@ -183,27 +187,30 @@ void RollerContacts::RollerCentre(int j, double* x, double* y) const {
   *y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
 }
 
-int RollerContacts::RacePoints(int j, int which, const RollerProfile& p, RacePoint out[2]) const {
+int RollerContacts::RacePoints(int j,
+                               int which,
+                               const RollerProfile& p,
+                               const ProfileDirections& dirs,
+                               RacePoint out[2]) const {
   // Positions only; the outer race radius is filled in by the caller (needs the nodal state).
-  const Body& b = rollers_[j];
   const double cx = centre_x_[j], cy = centre_y_[j];
   double dx, dy;  // unit direction from the roller centre towards the race contact
   if (which == 0) {
-    const double d = std::hypot(cx, cy);
+    const double d = std::sqrt(cx * cx + cy * cy);
     dx = cx / d, dy = cy / d;
   } else {
-    const double ex = shaft_.x - cx, ey = shaft_.y - cy, d = std::hypot(ex, ey);
+    const double ex = shaft_.x - cx, ey = shaft_.y - cy, d = std::sqrt(ex * ex + ey * ey);
     dx = ex / d, dy = ey / d;
   }
-  if (!p.spalled || !p.InSpall(std::atan2(dy, dx) - b.angle)) {
+  const double c = cos_[j], s = sin_[j];
+  if (!p.spalled || !dirs.InSpall(c * dx + s * dy, c * dy - s * dx)) {
     out[0] = {cx + p.radius * dx, cy + p.radius * dy, -dx, -dy, 0.0};
     return 1;
   }
   // Rim edges: the fillet centres (the corners for sharp edges); the caller offsets them by
   // the fillet radius along the race normal through each.
-  double kx[2], ky[2];
-  p.RimCorners(kx, ky);
-  const double c = cos_[j], s = sin_[j];
+  const double* kx = dirs.corner_x();
+  const double* ky = dirs.corner_y();
   for (int k = 0; k < 2; ++k)
     out[k] = {cx + c * kx[k] - s * ky[k], cy + s * kx[k] + c * ky[k], -dx, -dy, 0.0};
   return 2;
@@ -238,15 +245,34 @@ double RollerContacts::Contact(
     int j, Counter body, bool palmgren, RacePoint* pts, int npts, double* spring, double scale) {
   const double zeta = options_.contact_damping_ratio;
   const double dt = dt_;
+  // Friction and damping work: f^n . (v^(n-1/2) + v^(n+1/2)) / 2 dt_avg, the work the central
+  // differences give these forces (with v^(n-1/2) alone it is first order in the step).
+  const double half = 0.5 * (0.5 * (dt_prev_ + dt));
   const Body& b = rollers_[j];
+  auto Defer = [&](const RacePoint& p, double fx, double fy, int friction) {
+    DissipativeForce d;
+    d.fx = fx, d.fy = fy;
+    d.ax = p.px - b.x, d.ay = p.py - b.y;
+    d.px = p.px, d.py = p.py;
+    const Body& c = body == Counter::kShaft ? shaft_ : cage_;
+    d.bx = p.px - c.x, d.by = p.py - c.y;
+    d.omega = body == Counter::kShaft ? omega_s_ : 0.0;
+    d.weight = half;
+    d.roller = j, d.counter = static_cast<int>(body), d.friction = friction;
+    pending_.push_back(d);
+  };
   // Damping of each contact: a fraction of ITS critical value, i.e. with the reduced mass of
   // the roller and the counter body (LS-DYNA's viscous contact damping does the same with the
   // slave and master nodal masses); for the outer race, its effective contact mass.
   const int counter = static_cast<int>(body);
   const double m = reduced_mass_[3 * j + counter];
   const double m_t = reduced_mass_t_[3 * j + counter];
-  double q[2] = {0, 0}, qd[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0;
+  double q[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0, ue_acc = 0;
   double tx = -pts[0].ny, ty = pts[0].nx;
+  // Velocity of the roller's circle centre (the contact points move with it): the surfaces'
+  // speeds relative to the contact give the lubricant's entrainment speed.
+  const double centre_vx = b.vx - b.omega * (centre_y_[j] - b.y);
+  const double centre_vy = b.vy + b.omega * (centre_x_[j] - b.x);
   for (int k = 0; k < npts; ++k) {
     const RacePoint& p = pts[k];
     if (!(p.delta > 0)) continue;
@@ -267,58 +293,52 @@ double RollerContacts::Contact(
     const double rate = -(rvx * p.nx + rvy * p.ny);  // d delta / dt
     const double c = 2.0 * zeta * std::sqrt(kn * m);
     q[k] = std::max(0.0, qe + c * rate);
-    qd[k] = q[k] - qe;
-    damping_work_ += 0.5 * qd[k] * rate * dt_avg_;  // first half step (v^(n-1/2))
+    // Damping work, first half (v^(n-1/2)); the second half in FinishDissipation.
+    damping_work_ += (q[k] - qe) * rate * half;
+    Defer(p, (q[k] - qe) * p.nx, (q[k] - qe) * p.ny, 0);
     q_total += q[k];
     kn_total += kn;
     vt_acc += q[k] * (rvx * tx + rvy * ty);
+    const double u_roller = b.omega * ((p.px - centre_x_[j]) * ty - (p.py - centre_y_[j]) * tx);
+    const double u_counter = (vx - centre_vx) * tx + (vy - centre_vy) * ty;
+    ue_acc += q[k] * 0.5 * (u_roller + u_counter);
   }
-  // The damper's second half step is due for every point in contact, also where it cancels
-  // the spring (q = 0, separating fast): no force acts there, but the books hold the spring's
-  // energy and the damper's work qd = -qe.
-  auto keep_dissipative = [&](int k, double ft) {
-    const RacePoint& p = pts[k];
-    DissipativeForce d;
-    d.roller = j, d.counter = body, d.px = p.px, d.py = p.py;
-    d.rx = p.px - b.x, d.ry = p.py - b.y;
-    const Body& centre = body == Counter::kCage ? cage_ : shaft_;
-    d.cx = p.px - centre.x, d.cy = p.py - centre.y;
-    d.damping_x = qd[k] * p.nx, d.damping_y = qd[k] * p.ny;
-    d.friction_x = ft * tx, d.friction_y = ft * ty;
-    d.dt_avg = dt_avg_;
-    pending_.push_back(d);
-  };
   if (!(q_total > 0)) {
     *spring = 0.0;
-    for (int k = 0; k < npts; ++k)
-      if (qd[k] != 0.0) keep_dissipative(k, 0.0);
     return 0.0;
   }
   // The contact module's friction law: stick spring returned to mu(v_t) Q, plus a damper on
   // the stick spring (capped too).
   const double vt = vt_acc / q_total;
-  const double cap = friction_law_.Coefficient(vt) * q_total;
-  const double kt = options_.tangential_stiffness_ratio * kn_total;
-  const double ct = 2.0 * zeta * std::sqrt(kt * m_t);
-  const double fs = contact::ReturnMap(*spring, vt * dt, kt, cap).force;
-  const double f = std::clamp(fs - ct * vt, -cap, cap);
-  *spring = fs;
-  friction_work_ -= 0.5 * f * vt * dt_avg_;
+  double f;
+  if (palmgren && scene_.friction.model == contact::TractionModel::kEhl) {
+    // Lubricated race contact: the traction curve of the slide-to-roll ratio, no stick.
+    f = scene_.friction.ehl.Force(q_total, vt, ue_acc / q_total, m_t, dt);
+    *spring = f;
+  } else {
+    const double cap = friction_law_.Coefficient(vt) * q_total;
+    const double kt = options_.tangential_stiffness_ratio * kn_total;
+    const double ct = 2.0 * zeta * std::sqrt(kt * m_t);
+    const double fs = contact::ReturnMap(*spring, vt * dt, kt, cap).force;
+    f = std::clamp(fs - ct * vt, -cap, cap);
+    *spring = fs;
+  }
+  friction_work_ -= f * vt * half;
   for (int k = 0; k < npts; ++k) {
-    if (qd[k] != 0.0 && !(q[k] > 0)) keep_dissipative(k, 0.0);
     if (!(q[k] > 0)) continue;
     const RacePoint& p = pts[k];
     const double ft = f * q[k] / q_total;
+    Defer(p, ft * tx, ft * ty, 1);
     const double fx = q[k] * p.nx + ft * tx, fy = q[k] * p.ny + ft * ty;
     fx_[j] += fx, fy_[j] += fy;
     torque_[j] += (p.px - b.x) * fy - (p.py - b.y) * fx;
     ApplyCounter(body, p.px, p.py, -fx, -fy);
-    keep_dissipative(k, ft);
   }
   return q_total;
 }
 
-void RollerContacts::RaceContacts(int j, const RollerProfile& prof, double scale, int slot) {
+void RollerContacts::RaceContacts(
+    int j, const RollerProfile& prof, const ProfileDirections& dirs, double scale, int slot) {
   RacePoint pts[2];
   // Outer race. A profile point is a circle of radius rad around a centre q (the roller's
   // circle, or a rim fillet: its centre and radius, a corner with radius 0); the race gives its
@@ -328,7 +348,7 @@ void RollerContacts::RaceContacts(int j, const RollerProfile& prof, double scale
   const double rho = prof.edge_radius;
   const double cx = centre_x_[j], cy = centre_y_[j];
   if (race_->MayTouch(cx, cy, prof.radius + kReachMargin)) {
-    int n = RacePoints(j, 0, prof, pts);
+    int n = RacePoints(j, 0, prof, dirs, pts);
     double qx[2], qy[2], rad[2];
     if (n == 1) {
       qx[0] = cx, qy[0] = cy;
@@ -342,13 +362,15 @@ void RollerContacts::RaceContacts(int j, const RollerProfile& prof, double scale
     friction_[slot] = 0.0;
   }
   // Inner race (rigid ring on the shaft).
-  if (inner_radius_ - std::hypot(shaft_.x - cx, shaft_.y - cy) + prof.radius < -kReachMargin) {
+  const double sx = shaft_.x - cx, sy = shaft_.y - cy;
+  if (inner_radius_ - std::sqrt(sx * sx + sy * sy) + prof.radius < -kReachMargin) {
     friction_[slot + 1] = 0.0;
     return;
   }
-  const int n = RacePoints(j, 1, prof, pts);
+  const int n = RacePoints(j, 1, prof, dirs, pts);
   for (int k = 0; k < n; ++k) {
-    const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y, d = std::hypot(ex, ey);
+    const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y;
+    const double d = std::sqrt(ex * ex + ey * ey);
     if (n == 2) {  // rim edge: normal through the fillet centre, surface point rho closer
       pts[k].nx = ex / d, pts[k].ny = ey / d;
       pts[k].px -= rho * pts[k].nx, pts[k].py -= rho * pts[k].ny;
@@ -364,8 +386,9 @@ void RollerContacts::CageContacts(int j) {
   const double f = spall_fraction_[j];
   // Cage pocket walls: straight lines +-W/2 from the pocket's centre line.
   const double cx = centre_x_[j], cy = centre_y_[j];
-  const double psi = pocket_angle_[j] + cage_.angle;
-  const double ex = std::cos(psi), ey = std::sin(psi);
+  // Pocket centre line (cos, sin of pocket angle + cage angle).
+  const double ex = pocket_cos_[j] * cage_cos_ - pocket_sin_[j] * cage_sin_;
+  const double ey = pocket_sin_[j] * cage_cos_ + pocket_cos_[j] * cage_sin_;
   const double twx = -ey, twy = ex;
   const double lateral = (cx - cage_.x) * twx + (cy - cage_.y) * twy;
   // The force acts at the profile's extreme point towards the wall (a rim edge when the spall
@@ -373,15 +396,17 @@ void RollerContacts::CageContacts(int j) {
   // intact part of a partial-length spall reaches further than the notched part. Every profile
   // point is inside the circle: a wall the circle does not reach has no contact.
   const RollerProfile& wall_prof = f < 1.0 ? intact_profiles_[j] : profiles_[j];
+  const ProfileDirections& wall_dirs = f < 1.0 ? intact_directions_[j] : directions_[j];
   const double reach = wall_prof.radius - pocket_half_width_ + kReachMargin;
-  const double a_lead = psi + 0.5 * kPi - rollers_[j].angle;
   const double rc = cos_[j], rs = sin_[j];
+  // Direction of the leading wall's normal (tw) in the roller's frame.
+  const double ux = rc * twx + rs * twy, uy = rc * twy - rs * twx;
   double* lead_spring = &friction_[kFrictionSlots * j + 2];
   double* trail_spring = &friction_[kFrictionSlots * j + 3];
   double q_lead = 0.0, q_trail = 0.0;
   if (lateral + reach > 0) {
     double lx, ly;
-    const double h_lead = wall_prof.SupportPoint(a_lead, &lx, &ly);
+    const double h_lead = wall_dirs.SupportPoint(ux, uy, &lx, &ly);
     RacePoint lead{cx + rc * lx - rs * ly,
                    cy + rs * lx + rc * ly,
                    -twx,
@@ -393,7 +418,7 @@ void RollerContacts::CageContacts(int j) {
   }
   if (-lateral + reach > 0) {
     double kx, ky;
-    const double h_trail = wall_prof.SupportPoint(a_lead + kPi, &kx, &ky);
+    const double h_trail = wall_dirs.SupportPoint(-ux, -uy, &kx, &ky);
     RacePoint trail{cx + rc * kx - rs * ky,
                     cy + rs * kx + rc * ky,
                     twx,
@@ -419,45 +444,35 @@ void RollerContacts::CageContacts(int j) {
   }
 }
 
-void RollerContacts::RelativeVelocity(const DissipativeForce& d,
-                                      double shaft_omega,
-                                      double* vx,
-                                      double* vy) const {
-  const Body& b = rollers_[d.roller];
-  double ux = 0, uy = 0;
-  if (d.counter == Counter::kOuterRace) {
-    race_->Velocity(d.px, d.py, &ux, &uy);
-  } else {
-    const Body& c = d.counter == Counter::kShaft ? shaft_ : cage_;
-    const double w = d.counter == Counter::kShaft ? shaft_omega : c.omega;
-    ux = c.vx - w * d.cy, uy = c.vy + w * d.cx;
-  }
-  *vx = b.vx - b.omega * d.ry - ux;
-  *vy = b.vy + b.omega * d.rx - uy;
-}
-
-void RollerContacts::BookPendingDissipation() {
-  // The shaft's spin over the last step's second half is shaft_.omega (Integrate set it).
+void RollerContacts::FinishDissipation() {
   for (const DissipativeForce& d : pending_) {
-    double vx, vy;
-    RelativeVelocity(d, shaft_.omega, &vx, &vy);
-    damping_work_ -= 0.5 * d.dt_avg * (d.damping_x * vx + d.damping_y * vy);
-    friction_work_ -= 0.5 * d.dt_avg * (d.friction_x * vx + d.friction_y * vy);
+    const Body& b = rollers_[d.roller];
+    const double vrx = b.vx - b.omega * d.ay, vry = b.vy + b.omega * d.ax;
+    double vcx, vcy;
+    if (d.counter == static_cast<int>(Counter::kOuterRace)) {
+      race_->Velocity(d.px, d.py, &vcx, &vcy);
+    } else {
+      const Body& c = d.counter == static_cast<int>(Counter::kShaft) ? shaft_ : cage_;
+      const double w = d.counter == static_cast<int>(Counter::kShaft) ? d.omega : c.omega;
+      vcx = c.vx - w * d.by, vcy = c.vy + w * d.bx;
+    }
+    const double work = -(d.fx * (vrx - vcx) + d.fy * (vry - vcy)) * d.weight;
+    (d.friction ? friction_work_ : damping_work_) += work;
   }
   pending_.clear();
 }
 
 void RollerContacts::Step(OuterRace& race, double t, double dt) {
   race_ = &race;
-  BookPendingDissipation();
+  FinishDissipation();
   dt_ = dt;
-  dt_avg_ = 0.5 * (dt_prev_ + dt);
   omega_s_ = speed_(t);
   shaft_fx_ = shaft_fy_ = shaft_torque_ = cage_fx_ = cage_fy_ = cage_torque_ = 0.0;
   step_potential_ = 0.0;
   std::fill(fx_.begin(), fx_.end(), 0.0);
   std::fill(fy_.begin(), fy_.end(), 0.0);
   std::fill(torque_.begin(), torque_.end(), 0.0);
+  cage_cos_ = std::cos(cage_.angle), cage_sin_ = std::sin(cage_.angle);
   for (int j = 0; j < num_rollers(); ++j) {
     const Body& b = rollers_[j];
     cos_[j] = std::cos(b.angle), sin_[j] = std::sin(b.angle);
@@ -467,8 +482,9 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
   for (int j = 0; j < num_rollers(); ++j) {
     const double f = spall_fraction_[j];
     outer_force_[j] = inner_force_[j] = 0.0;
-    RaceContacts(j, profiles_[j], f, kFrictionSlots * j);
-    if (f < 1.0) RaceContacts(j, intact_profiles_[j], 1.0 - f, kFrictionSlots * j + 4);
+    RaceContacts(j, profiles_[j], directions_[j], f, kFrictionSlots * j);
+    if (f < 1.0)
+      RaceContacts(j, intact_profiles_[j], intact_directions_[j], 1.0 - f, kFrictionSlots * j + 4);
     CageContacts(j);
   }
   potential_ = step_potential_;
@@ -506,12 +522,11 @@ void RollerContacts::Integrate(double t, double dt) {
   kinetic_ = kinetic;
   centred_kinetic_ = centred;
   // Load work over the half steps around t^n; drive torque = -(contact torque on the shaft),
-  // with the spins the contacts' relative velocities use (omega(t^n), then omega^(n+1/2)).
-  // The second halves are booked now and left out of ExternalWork() until the next step.
+  // at the spin the contacts' relative velocities use in both halves. The second halves are
+  // booked now and left out of ExternalWork() until the next step.
   const double load_half = 0.5 * dt_avg * load * shaft_.vy;
-  const double drive_half = -0.5 * dt_avg * shaft_torque_ * shaft_.omega;
-  external_work_ += 0.5 * dt_avg * load * vy_old + load_half;
-  external_work_ += -0.5 * dt_avg * shaft_torque_ * omega_s_ + drive_half;
+  const double drive_half = -0.5 * dt_avg * shaft_torque_ * omega_s_;
+  external_work_ += 0.5 * dt_avg * load * vy_old + load_half + 2.0 * drive_half;
   external_half_ = load_half + drive_half;
   dt_prev_ = dt;
 }
@@ -535,34 +550,15 @@ std::string RollerContacts::SaveState() const {
                    external_half_,
                    centred_kinetic_})
     out.Put(x);
-  out.Put(static_cast<double>(pending_.size()));
-  for (const DissipativeForce& d : pending_)
-    for (double x : {static_cast<double>(d.roller),
-                     static_cast<double>(d.counter),
-                     d.px,
-                     d.py,
-                     d.rx,
-                     d.ry,
-                     d.cx,
-                     d.cy,
-                     d.damping_x,
-                     d.damping_y,
-                     d.friction_x,
-                     d.friction_y,
-                     d.dt_avg})
-      out.Put(x);
+  out.PutVector(pending_);
   return out.Take();
 }
 
 void RollerContacts::LoadState(const std::string& bytes) {
   const size_t z = rollers_.size();
-  // Fixed part, then the count of pending dissipative forces and theirs.
-  const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 8 + 1;
-  constexpr size_t kPendingValues = 13;
-  const auto wrong_size = [] {
-    return InputError("roller contacts: checkpoint state has the wrong size");
-  };
-  if (bytes.size() < n * sizeof(double)) throw wrong_size();
+  const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 8;
+  if (bytes.size() < n * sizeof(double))
+    throw InputError("roller contacts: checkpoint state has the wrong size");
   CheckpointReader in(bytes, "roller contacts: checkpoint state");
   auto get_body = [&](Body* b) {
     for (double* x : {&b->x, &b->y, &b->angle, &b->vx, &b->vy, &b->omega}) *x = in.Get<double>();
@@ -581,30 +577,11 @@ void RollerContacts::LoadState(const std::string& bytes) {
                     &external_half_,
                     &centred_kinetic_})
     *x = in.Get<double>();
-  const double count = in.Get<double>();
-  if (!(count >= 0 && count <= 4.0 * kFrictionSlots * z) ||
-      bytes.size() != (n + kPendingValues * static_cast<size_t>(count)) * sizeof(double))
-    throw wrong_size();
-  pending_.assign(static_cast<size_t>(count), DissipativeForce{});
-  for (DissipativeForce& d : pending_) {
-    d.roller = static_cast<int>(in.Get<double>());
-    const double counter = in.Get<double>();
-    if (!(d.roller >= 0 && d.roller < static_cast<int>(z)) || !(counter >= 0 && counter <= 2))
-      throw InputError("roller contacts: checkpoint state is damaged");
-    d.counter = static_cast<Counter>(static_cast<int>(counter));
-    for (double* x : {&d.px,
-                      &d.py,
-                      &d.rx,
-                      &d.ry,
-                      &d.cx,
-                      &d.cy,
-                      &d.damping_x,
-                      &d.damping_y,
-                      &d.friction_x,
-                      &d.friction_y,
-                      &d.dt_avg})
-      *x = in.Get<double>();
-  }
+  pending_ = in.GetVector<DissipativeForce>();
+  for (const DissipativeForce& d : pending_)
+    if (d.roller < 0 || d.roller >= static_cast<int>(z) || d.counter < 0 || d.counter > 2)
+      throw InputError("roller contacts: checkpoint state has a bad pending contact force");
+  if (!in.AtEnd()) throw InputError("roller contacts: checkpoint state has the wrong size");
 }
 
 }  // namespace spallkit::sim

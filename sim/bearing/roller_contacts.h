@@ -26,17 +26,17 @@
 //  - every contact: normal damping (fraction of critical of the contact's two-body oscillator:
 //    reduced mass of the roller and the counter body), friction by the contact module's law
 //    (sim/contact/friction.h: mu = mu_d + (mu_s - mu_d) exp(-decay |v|), a stick spring capped
-//    at mu Q) plus a damper on the stick spring.
+//    at mu Q) plus a damper on the stick spring; with friction.model = "ehl" the race contacts
+//    take the lubricant traction curve of their slide-to-roll ratio instead
+//    (sim/contact/traction.h).
 // Time integration: central differences (rigid_body.h), inside Step().
-// Energies, all at t^n (the forces' time; central differences conserve energy measured there
-// to second order, while the kinetic energy at v^(n+1/2) differs from it by half a step of the
-// forces' power, a first-order error that swings with every impact): StoredEnergy() = contact
-// potentials at x^n + the rigid bodies' kinetic energy 1/2 m v^(n-1/2) . v^(n+1/2);
-// DissipatedEnergy() = friction + contact damping, ExternalWork() = radial load + shaft drive,
-// each force's work by the trapezoidal rule with the mid-step velocities, F^k . (v^(k-1/2) +
-// v^(k+1/2)) dt_avg / 2, up to t^n (step n's force counted over its first half step only; its
-// second half is booked at the next step, when the outer race's nodal velocities v^(n+1/2) are
-// known).
+// Energies, all at t^n (the forces' time, as the solver's balance: central differences conserve
+// energy measured there to second order, while kinetic energy at v^(n+1/2) is off by half a
+// step of the contact forces' power, a first-order error that swings with every impact):
+// StoredEnergy() = contact potentials at x^n + the rigid bodies' kinetic energy
+// 1/2 m v^(n-1/2) . v^(n+1/2); DissipatedEnergy() = friction + contact damping, ExternalWork()
+// = radial load + shaft drive, each force's work f^k . (v^(k-1/2) + v^(k+1/2)) dt_avg / 2 up to
+// t^n (step n's force over its first half step).
 #pragma once
 
 #include <string>
@@ -152,22 +152,13 @@ class RollerContacts {
 
  private:
   enum class Counter { kOuterRace, kShaft, kCage };
-  // A contact's damping and friction force on a roller at one point, kept for the second half
-  // of its work (the counter body gets the opposite force).
-  struct DissipativeForce {
-    int roller = 0;
-    Counter counter = Counter::kOuterRace;
-    double px = 0, py = 0;                // world point
-    double rx = 0, ry = 0;                // lever from the roller's mass centre
-    double cx = 0, cy = 0;                // lever from the shaft's or cage's centre
-    double damping_x = 0, damping_y = 0;  // normal damper force on the roller
-    double friction_x = 0, friction_y = 0;
-    double dt_avg = 0;
-  };
-
   // Candidate points of roller j against the outer (which = 0) or inner (1) race: positions of
   // the circle centre or the two rim fillet centres, normal along the centre line.
-  int RacePoints(int j, int which, const RollerProfile& profile, RacePoint out[2]) const;
+  int RacePoints(int j,
+                 int which,
+                 const RollerProfile& profile,
+                 const ProfileDirections& dirs,
+                 RacePoint out[2]) const;
   void CounterVelocity(Counter body, double px, double py, double* vx, double* vy) const;
   void ApplyCounter(Counter body, double px, double py, double fx, double fy);
   // One contact (1 or 2 points) of roller j with a counter body: normal force (Palmgren or the
@@ -183,20 +174,27 @@ class RollerContacts {
                  double scale = 1.0);
   // Both race contacts of roller j for one profile carrying `scale` of the Palmgren stiffness;
   // stick springs friction_[slot], friction_[slot + 1]. Adds to outer_force_ / inner_force_.
-  void RaceContacts(int j, const RollerProfile& profile, double scale, int slot);
+  void RaceContacts(
+      int j, const RollerProfile& profile, const ProfileDirections& dirs, double scale, int slot);
   // Pocket walls and the radial guide of roller j.
   void CageContacts(int j);
   // Central-difference update of every rigid body and the energy books.
   void Integrate(double t, double dt);
-  // Velocity of roller j's material at lever (rx, ry) from its mass centre, less the counter
-  // body's at world point (px, py) (lever (cx, cy) from the shaft's or cage's centre), at the
-  // bodies' current velocities; `shaft_omega`: the shaft's spin to use.
-  void RelativeVelocity(const DissipativeForce& d,
-                        double shaft_omega,
-                        double* vx,
-                        double* vy) const;
-  // Books the second half step of the last step's dissipative forces (velocities v^(n+1/2)).
-  void BookPendingDissipation();
+  // Work of step n-1's friction and damping forces on the velocities v^(n-1/2) (the second half
+  // of the central-difference work f . (v^(n-3/2) + v^(n-1/2)) / 2 dt_avg).
+  void FinishDissipation();
+
+  // A friction or damping force of one contact at step n, kept for the second half of its work
+  // (FinishDissipation at the next step, when every body's v^(n+1/2) is known).
+  struct DissipativeForce {
+    double fx, fy;  // on the roller (N)
+    double ax, ay;  // contact point - roller mass centre (x^n)
+    double px, py;  // contact point (world, x^n): the outer race's velocity is read there
+    double bx, by;  // contact point - counter body's centre (x^n)
+    double omega;   // counter body's spin used (the shaft's prescribed speed at t^n)
+    double weight;  // dt_avg / 2 of step n
+    int roller, counter, friction;  // friction: 1, damping: 0
+  };
 
   Scene scene_;
   HybridOptions options_;
@@ -205,9 +203,11 @@ class RollerContacts {
   solver::TimeFunction angle_, speed_, load_;
   std::vector<RollerProfile> profiles_;
   std::vector<RollerProfile> intact_profiles_;  // the same circles without their spalls
+  std::vector<ProfileDirections> directions_, intact_directions_;
   std::vector<double> spall_fraction_;
   std::vector<double> roller_mass_, roller_inertia_, centroid_x_, centroid_y_;  // body frame
   std::vector<double> pocket_angle_;  // pocket j centre line in the cage frame
+  std::vector<double> pocket_cos_, pocket_sin_;
   double cage_mass_ = 0, cage_inertia_ = 0, shaft_mass_ = 0, race_mass_ = 0;
   double pocket_half_width_ = 0, pitch_radius_ = 0, inner_radius_ = 0;
   double k_c_ = 0, dt_limit_ = 0, roller_dt_ = 0, ring_dt_ = 0, bound_normal_stiffness_ = 0;
@@ -221,17 +221,18 @@ class RollerContacts {
   std::vector<double> outer_force_, inner_force_, cage_force_;
   double dt_prev_ = 0, potential_ = 0, kinetic_ = 0, friction_work_ = 0, damping_work_ = 0,
          external_work_ = 0;
-  // The last step's second half of the load and drive work (booked in external_work_ already),
-  // the rigid bodies' kinetic energy at t^n, and the dissipative forces whose second half is due.
+  // The last step's second half of the load and drive work (in external_work_, not yet in
+  // ExternalWork()), and the rigid bodies' kinetic energy at t^n.
   double external_half_ = 0, centred_kinetic_ = 0;
-  std::vector<DissipativeForce> pending_;
+  std::vector<DissipativeForce> pending_;  // this step's, for their second half
 
   // Per step.
   OuterRace* race_ = nullptr;
-  double dt_ = 0, dt_avg_ = 0, omega_s_ = 0, step_potential_ = 0;
+  double dt_ = 0, omega_s_ = 0, step_potential_ = 0;
   double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
          cage_torque_ = 0;
   std::vector<double> fx_, fy_, torque_;  // per roller
+  double cage_cos_ = 1, cage_sin_ = 0;    // of the cage's angle at x^n
   // Per roller at x^n: cos and sin of its angle, circle centre.
   std::vector<double> cos_, sin_, centre_x_, centre_y_;
 };

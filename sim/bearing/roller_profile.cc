@@ -60,6 +60,26 @@ double RollerProfile::SupportPoint(double a, double* px, double* py) const {
   return x * ux + y * uy;
 }
 
+ProfileDirections::ProfileDirections(const RollerProfile& p)
+    : spalled_(p.spalled), radius_(p.radius), edge_radius_(p.edge_radius) {
+  if (!spalled_) return;
+  axis_x_ = std::cos(p.angle), axis_y_ = std::sin(p.angle);
+  cos_half_ = std::cos(p.ContactHalfAngle());
+  p.RimCorners(corner_x_, corner_y_);
+}
+
+double ProfileDirections::SupportPoint(double ux, double uy, double* px, double* py) const {
+  double x = radius_ * ux, y = radius_ * uy;
+  if (InSpall(ux, uy)) {
+    const int k = corner_x_[0] * ux + corner_y_[0] * uy >= corner_x_[1] * ux + corner_y_[1] * uy
+                      ? 0
+                      : 1;
+    x = corner_x_[k] + edge_radius_ * ux, y = corner_y_[k] + edge_radius_ * uy;
+  }
+  *px = x, *py = y;
+  return x * ux + y * uy;
+}
+
 RollerProfile::Properties RollerProfile::SectionProperties() const {
   const double r = radius;
   Properties p;

@@ -41,4 +41,26 @@ struct RollerProfile {
   Properties SectionProperties() const;
 };
 
+// The same queries for directions given as unit vectors (body frame), with the profile's trig
+// done once: the per-step form the rigid-roller contacts use (no atan2, sin or cos per query).
+class ProfileDirections {
+ public:
+  ProfileDirections() = default;
+  explicit ProfileDirections(const RollerProfile& profile);
+  // RollerProfile::InSpall for the direction (ux, uy).
+  bool InSpall(double ux, double uy) const {
+    return spalled_ && ux * axis_x_ + uy * axis_y_ > cos_half_;
+  }
+  // RollerProfile::SupportPoint for the direction (ux, uy).
+  double SupportPoint(double ux, double uy, double* px, double* py) const;
+  // RollerProfile::RimCorners.
+  const double* corner_x() const { return corner_x_; }
+  const double* corner_y() const { return corner_y_; }
+
+ private:
+  bool spalled_ = false;
+  double radius_ = 0, edge_radius_ = 0, axis_x_ = 1, axis_y_ = 0, cos_half_ = 1;
+  double corner_x_[2] = {0, 0}, corner_y_[2] = {0, 0};
+};
+
 }  // namespace spallkit::sim

@@ -75,6 +75,22 @@ TEST(RecordCheck, ClippedSineIsAClippingWarning) {
   EXPECT_EQ(CheckRecord(x).clipped_runs, 0);
 }
 
+// The clipping scan skips blocks of samples with no sample at a rail; runs that cross a block
+// edge, end the record, or touch both rails are each counted once.
+TEST(RecordCheck, ClippedRunsAcrossBlockEdgesAreCountedOnce) {
+  std::vector<double> x = Noise(4096, 9);
+  for (double& v : x) v = std::clamp(v, -3.0, 3.0) * 0.5;  // within (-1.5, 1.5)
+  auto stick = [&](size_t from, size_t count, double rail) {
+    for (size_t i = from; i < from + count; ++i) x[i] = rail;
+  };
+  stick(250, 10, 2.0);     // across the edge at 256
+  stick(1000, 3, -2.0);    // exactly clip_run long
+  stick(2040, 2, 2.0);     // too short
+  stick(3000, 600, -2.0);  // spans whole blocks
+  stick(4090, 6, 2.0);     // ends the record
+  EXPECT_EQ(CheckRecord(x).clipped_runs, 4);
+}
+
 TEST(TimeStatistics, HugeAndTinyValuesStayFinite) {
   std::vector<double> x = Noise(10000);
   x[10] = 1e200;

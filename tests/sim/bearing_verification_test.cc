@@ -108,6 +108,30 @@ TEST(RollerProfileTest, RoundedSpallEdgesAreExact) {
   EXPECT_DOUBLE_EQ(p.Support(b + 1e-9), r);
 }
 
+TEST(RollerProfileTest, DirectionQueriesAgreeWithTheAngleQueries) {
+  // ProfileDirections (unit vectors, trig done once) against RollerProfile (angles) over a full
+  // turn, rounded and sharp edges, a spall axis off zero.
+  for (double rho : {0.0, 0.2e-3}) {
+    RollerProfile p;
+    p.radius = 3.25e-3, p.spalled = true, p.width = 1.38e-3, p.depth = 0.59e-3, p.angle = 0.7;
+    p.edge_radius = rho;
+    const ProfileDirections d(p);
+    int in_spall = 0;
+    for (int k = 0; k < 3600; ++k) {
+      const double a = 2.0 * kPi * (k + 0.37) / 3600.0;
+      const double ux = std::cos(a), uy = std::sin(a);
+      ASSERT_EQ(d.InSpall(ux, uy), p.InSpall(a)) << "angle " << a;
+      in_spall += p.InSpall(a);
+      double px, py, qx, qy;
+      const double h = d.SupportPoint(ux, uy, &px, &py);
+      EXPECT_NEAR(h, p.SupportPoint(a, &qx, &qy), 1e-15);
+      EXPECT_NEAR(px, qx, 1e-15);
+      EXPECT_NEAR(py, qy, 1e-15);
+    }
+    EXPECT_NEAR(in_spall, 3600 * p.ContactHalfAngle() / kPi, 1.0);
+  }
+}
+
 // Static (0 rpm) load distribution, averaged over the last millisecond.
 std::vector<double> StaticOuterForces(const std::vector<std::string>& extra, double* shaft_y) {
   std::vector<std::string> sets = {"model.fidelity=hybrid",

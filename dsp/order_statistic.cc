@@ -1,0 +1,106 @@
+#include "dsp/order_statistic.h"
+
+#include <algorithm>
+#include <vector>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define SPALLKIT_AVX512_PARTITION 1
+#endif
+
+#include "core/error.h"
+
+namespace spallkit::dsp {
+namespace {
+
+// Splits src[i, len) into lo (values < pivot) and hi (the rest, NaN included), keeping the
+// order, after nlo / nhi values already placed; returns how many went to lo in all. Branch-free:
+// on a noise spectrum every comparison is a coin flip that a branch predictor loses, which is
+// where std::nth_element spends its time.
+inline int PartitionTail(
+    const double* src, int i, int len, double pivot, double* lo, double* hi, int nlo, int nhi) {
+  for (; i < len; ++i) {
+    const double v = src[i];
+    lo[nlo] = v;
+    hi[nhi] = v;
+    const bool less = v < pivot;
+    nlo += less;
+    nhi += !less;
+  }
+  return nlo;
+}
+
+#ifdef SPALLKIT_AVX512_PARTITION
+// Eight values at a time: compress into a register and store the whole vector (compress-to-
+// memory is microcoded and slow on some cores); the lanes past the count are overwritten by the
+// next store, so lo and hi need room for len + 8 values.
+__attribute__((target("avx512f"))) int PartitionAvx512(
+    const double* src, int len, double pivot, double* lo, double* hi) {
+  int nlo = 0, nhi = 0, i = 0;
+  const __m512d pv = _mm512_set1_pd(pivot);
+  for (; i + 8 <= len; i += 8) {
+    const __m512d v = _mm512_loadu_pd(src + i);
+    const __mmask8 less = _mm512_cmp_pd_mask(v, pv, _CMP_LT_OQ);
+    _mm512_storeu_pd(lo + nlo, _mm512_maskz_compress_pd(less, v));
+    _mm512_storeu_pd(hi + nhi, _mm512_maskz_compress_pd(static_cast<__mmask8>(~less), v));
+    const int count = __builtin_popcount(less);
+    nlo += count;
+    nhi += 8 - count;
+  }
+  return PartitionTail(src, i, len, pivot, lo, hi, nlo, nhi);
+}
+
+bool HasAvx512() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512f");
+}
+#endif
+
+int Partition(const double* src, int len, double pivot, double* lo, double* hi) {
+#ifdef SPALLKIT_AVX512_PARTITION
+  static const bool avx512 = HasAvx512();
+  if (avx512) return PartitionAvx512(src, len, pivot, lo, hi);
+#endif
+  return PartitionTail(src, 0, len, pivot, lo, hi, 0, 0);
+}
+
+}  // namespace
+
+double SelectKth(const double* data, int n, int k, double* scratch) {
+  SPALLKIT_CHECK(k >= 0 && k < n, "SelectKth: k " << k << " of " << n << " values");
+  const int cap = n + 8;
+  double* bufs[3] = {scratch, scratch + cap, scratch + 2 * cap};
+  const double* src = data;
+  int cur = -1;  // which buffer src is (-1: data)
+  int len = n;
+  for (int round = 0; len > 16 && round < 64; ++round) {
+    const double x = src[0], y = src[len / 2], z = src[len - 1];
+    const double pivot = std::max(std::min(x, y), std::min(std::max(x, y), z));
+    double* lo = bufs[cur == 0 ? 1 : 0];
+    double* hi = bufs[cur == 2 ? 1 : 2];
+    const int nlo = Partition(src, len, pivot, lo, hi);
+    if (k < nlo) {
+      src = lo;
+      len = nlo;
+    } else if (nlo > 0) {
+      src = hi;
+      len -= nlo;
+      k -= nlo;
+    } else {
+      break;  // nothing below the pivot (ties at the minimum): finish below
+    }
+    cur = src == bufs[0] ? 0 : (src == bufs[1] ? 1 : 2);
+  }
+  double* work = cur >= 0 ? bufs[cur] : bufs[0];
+  if (cur < 0) std::copy(src, src + len, work);
+  std::nth_element(work, work + k, work + len);
+  return work[k];
+}
+
+double SelectKth(std::span<const double> data, int k) {
+  const int n = static_cast<int>(data.size());
+  std::vector<double> scratch(3 * (static_cast<size_t>(n) + 8));
+  return SelectKth(data.data(), n, k, scratch.data());
+}
+
+}  // namespace spallkit::dsp
