@@ -485,8 +485,7 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
     outer_force_[j] = inner_force_[j] = 0.0;
     RaceContacts(j, profiles_[j], directions_[j], f, kFrictionSlots * j);
     if (f < 1.0)
-      RaceContacts(
-          j, intact_profiles_[j], intact_directions_[j], 1.0 - f, kFrictionSlots * j + 4);
+      RaceContacts(j, intact_profiles_[j], intact_directions_[j], 1.0 - f, kFrictionSlots * j + 4);
     CageContacts(j);
   }
   potential_ = step_potential_;

@@ -180,12 +180,12 @@ class RollerContacts {
   // A friction or damping force of one contact at step n, kept for the second half of its work
   // (FinishDissipation at the next step, when every body's v^(n+1/2) is known).
   struct DissipativeForce {
-    double fx, fy;    // on the roller (N)
-    double ax, ay;    // contact point - roller mass centre (x^n)
-    double px, py;    // contact point (world, x^n): the outer race's velocity is read there
-    double bx, by;    // contact point - counter body's centre (x^n)
-    double omega;     // counter body's spin used (the shaft's prescribed speed at t^n)
-    double weight;    // dt_avg / 2 of step n
+    double fx, fy;  // on the roller (N)
+    double ax, ay;  // contact point - roller mass centre (x^n)
+    double px, py;  // contact point (world, x^n): the outer race's velocity is read there
+    double bx, by;  // contact point - counter body's centre (x^n)
+    double omega;   // counter body's spin used (the shaft's prescribed speed at t^n)
+    double weight;  // dt_avg / 2 of step n
     int roller, counter, friction;  // friction: 1, damping: 0
   };
 
@@ -222,7 +222,7 @@ class RollerContacts {
   double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
          cage_torque_ = 0;
   std::vector<double> fx_, fy_, torque_;  // per roller
-  double cage_cos_ = 1, cage_sin_ = 0;  // of the cage's angle at x^n
+  double cage_cos_ = 1, cage_sin_ = 0;    // of the cage's angle at x^n
   // Per roller at x^n: cos and sin of its angle (advanced with it in Integrate and
   // checkpointed: not recomputed from the angle), circle centre.
   std::vector<double> cos_, sin_, centre_x_, centre_y_;
