@@ -93,7 +93,7 @@ int Run(const Opts& o) {
       std::fflush(stderr);
     };
   sim::Simulation simulation(scene, so);
-  if (!o.quiet || scene.model.fidelity == "auto")
+  if (!o.quiet || scene.model.fidelity == sim::Fidelity::kAuto)
     std::printf("%s\n", simulation.fidelity_reason().c_str());
   if (!o.quiet) std::printf("%s\n", simulation.model().Describe().c_str());
   for (const std::string& w : simulation.model().Warnings())

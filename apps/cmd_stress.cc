@@ -14,6 +14,7 @@ namespace {
 
 struct Opts {
   spallkit::sim::stress::StressOptions stress;
+  std::string fidelity = "hybrid";
   double max_duration_ms = 20.0;
   bool json = false;
 };
@@ -21,6 +22,9 @@ struct Opts {
 int Run(Opts& o) {
   using namespace spallkit::sim::stress;
   o.stress.max_duration_s = o.max_duration_ms * 1e-3;
+  if (!spallkit::sim::ParseFidelity(o.fidelity, &o.stress.fidelity))
+    throw spallkit::InputError("stress: fidelity must be \"hybrid\", \"lumped\" or \"fe\" (got \"" +
+                               o.fidelity + "\")");
   std::string error;
   if (!o.stress.Validate(&error)) throw spallkit::InputError(error);
   if (!o.json)
@@ -50,7 +54,7 @@ spallkit::apps::Register reg(
       sub.add_option("--scenes", o->stress.scenes, "Number of scenes")->capture_default_str();
       sub.add_option("--seed", o->stress.seed, "Seed of the draw (same scenes on every machine)")
           ->capture_default_str();
-      sub.add_option("--fidelity", o->stress.fidelity, "Model of every scene: hybrid, lumped or fe")
+      sub.add_option("--fidelity", o->fidelity, "Model of every scene: hybrid, lumped or fe")
           ->capture_default_str();
       sub.add_option("--max-duration-ms", o->max_duration_ms, "Longest simulated time per scene")
           ->capture_default_str();

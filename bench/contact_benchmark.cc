@@ -45,9 +45,10 @@ Setup MakeSetup(int n, int m, double offset_y, bool curved) {
   s.master = sim::contact::MakeSurfaceFromChain("race", mn, true);
   if (curved) {
     const double cy = -(R - r) - 1e-6 + offset_y;
-    sim::contact::MarkCircularArcs(&s.slave, s.state.x.data(), s.state.y.data(), 0.0, cy, r, 1e-12);
     sim::contact::MarkCircularArcs(
-        &s.master, s.state.x.data(), s.state.y.data(), 0.0, 0.0, R, 1e-12);
+        &s.slave, s.state.x.data(), s.state.y.data(), {0.0, cy, r}, 1e-12);
+    sim::contact::MarkCircularArcs(
+        &s.master, s.state.x.data(), s.state.y.data(), {0.0, 0.0, R}, 1e-12);
   }
   return s;
 }

@@ -12,14 +12,5 @@ find_path(SpallkitHDF5_INCLUDE_DIR hdf5.h HINTS ${SpallkitHDF5_PC_INCLUDE_DIRS}
 find_library(SpallkitHDF5_LIBRARY hdf5 HINTS ${SpallkitHDF5_PC_LIBRARY_DIRS}
              PATH_SUFFIXES hdf5/serial)
 
-include(FindPackageHandleStandardArgs)
-find_package_handle_standard_args(SpallkitHDF5
-                                  REQUIRED_VARS SpallkitHDF5_LIBRARY SpallkitHDF5_INCLUDE_DIR)
-
-if(SpallkitHDF5_FOUND AND NOT TARGET SpallkitHDF5::HDF5)
-  add_library(SpallkitHDF5::HDF5 UNKNOWN IMPORTED)
-  set_target_properties(SpallkitHDF5::HDF5 PROPERTIES
-    IMPORTED_LOCATION "${SpallkitHDF5_LIBRARY}"
-    INTERFACE_INCLUDE_DIRECTORIES "${SpallkitHDF5_INCLUDE_DIR}")
-endif()
-mark_as_advanced(SpallkitHDF5_INCLUDE_DIR SpallkitHDF5_LIBRARY)
+include(${CMAKE_CURRENT_LIST_DIR}/SpallkitFindLibraries.cmake)
+spallkit_find_finish(SpallkitHDF5::HDF5 SpallkitHDF5_INCLUDE_DIR SpallkitHDF5_LIBRARY)

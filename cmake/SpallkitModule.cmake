@@ -25,6 +25,10 @@ function(spallkit_add_library name)
   string(REGEX REPLACE "^spallkit_" "" export_name ${name})
   add_library(spallkit::${export_name} ALIAS ${name})
   set_target_properties(${name} PROPERTIES EXPORT_NAME ${export_name})
+  if(NOT DEFINED CMAKE_INSTALL_RPATH)
+    # Shared: an installed module finds the modules it links in its own folder.
+    set_target_properties(${name} PROPERTIES INSTALL_RPATH "$ORIGIN")
+  endif()
   target_compile_features(${name} PUBLIC cxx_std_20)  # the headers use C++20 (<numbers>, <span>)
   target_include_directories(${name} PUBLIC $<BUILD_INTERFACE:${SPALLKIT_INCLUDE_ROOT}>
                                             $<INSTALL_INTERFACE:${SPALLKIT_INSTALL_INCLUDEDIR}>)

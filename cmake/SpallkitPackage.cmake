@@ -21,4 +21,5 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/spallkitConfig.cmake
               ${CMAKE_CURRENT_LIST_DIR}/FindSpallkitFFTW.cmake
               ${CMAKE_CURRENT_LIST_DIR}/FindSpallkitHDF5.cmake
               ${CMAKE_CURRENT_LIST_DIR}/FindSpallkitOpenCV.cmake
+              ${CMAKE_CURRENT_LIST_DIR}/SpallkitFindLibraries.cmake
         DESTINATION ${SPALLKIT_INSTALL_CMAKEDIR})

@@ -169,6 +169,52 @@ CombSearch::CombSearch(const FaultFamily& family,
   }
   combinations_ = 0;
   for (int g = 0; g < grid; ++g) combinations_ += changed[g];
+
+  // Nuisance combs and their reference lines: every line m * base up to the family's top line
+  // that lies outside all of the family's search windows (where it cannot be a fault line).
+  auto add_nuisance = [&](double base, bool shaft) {
+    if (!(base > 0.0)) return;
+    NuisanceComb comb;
+    comb.base_hz = base;
+    comb.shaft = shaft;
+    for (int m = 1; m * base <= f_top; ++m) {
+      const double fm = m * base;
+      const int bin = static_cast<int>(std::floor(fm / df));
+      if (bin + 1.0 >= top_bin) break;
+      bool in_window = false;
+      for (const FaultLine& line : family.lines) {
+        const double g = std::max(guard_hz, guard_fraction * fm);
+        in_window |= fm >= line.nominal_hz * s_lo - g && fm <= line.nominal_hz * s_hi + g;
+      }
+      if (!in_window) comb.reference_bins.push_back(bin);
+    }
+    nuisance_.push_back(std::move(comb));
+  };
+  if (context.exclude_shaft)
+    add_nuisance(
+        context.measured_shaft_scale > 0.0 ? shaft_base * context.measured_shaft_scale : shaft_base,
+        true);
+  if (context.exclude_mains)
+    for (double mains : options.mains_hz) add_nuisance(mains, false);
+}
+
+double CombSearch::NuisanceLevel(const std::vector<double>& comb_levels,
+                                 double f,
+                                 const std::string& exclusion) const {
+  if (exclusion != "shaft" && exclusion != "mains") return 0.0;
+  const double guard = std::max(options_.guard_bins * df_, options_.guard_fraction * f);
+  double level = 0.0;
+  bool any = false;
+  for (size_t c = 0; c < nuisance_.size(); ++c) {
+    const NuisanceComb& comb = nuisance_[c];
+    // A shaft exclusion may come from the comb's own speed scale: the shaft comb applies.
+    if (!(DistanceToHarmonic(f, comb.base_hz) <= guard || (comb.shaft && exclusion == "shaft")))
+      continue;
+    if (static_cast<int>(comb.reference_bins.size()) < options_.min_nuisance_references) return 0.0;
+    level = std::max(level, comb_levels[c]);
+    any = true;
+  }
+  return any ? std::max(level, 1.0) : 0.0;
 }
 
 bool CombSearch::Excluded(double f, double s, std::string* why) const {
@@ -281,6 +327,30 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
     }
   }
 
+  // Ties: where every line of the best comb is capped (a strong fault), many grid points give the
+  // same score, and the first of them may sit a bin off the true peaks (on their leakage). The
+  // line table is taken at the tied point with the largest uncapped evidence, sum of -ln q, and
+  // in the middle of the points that tie on that too (the lines' bins do not pin the scale
+  // there; the middle is the scale's best estimate for the lines that do not count).
+  if (best_used > 0) {
+    const double n_eff = spectrum.effective_samples;
+    double best_uncapped = -1.0;
+    std::vector<int> tied;
+    for (int g = 0; g < grid; ++g) {
+      if (used[g] != best_used || score[g] != best_score) continue;
+      double uncapped = 0.0;
+      for (int l = 0; l < nl; ++l) {
+        const int b = bins_[static_cast<size_t>(l) * grid + g];
+        if (b >= 0) uncapped += std::log1p(std::max(spectrum.z[b], spectrum.z[b + 1]) / n_eff);
+      }
+      if (uncapped > best_uncapped) {
+        best_uncapped = uncapped;
+        tied.clear();
+      }
+      if (uncapped == best_uncapped) tied.push_back(g);
+    }
+    if (!tied.empty()) best_s = s_grid[tied[tied.size() / 2]];
+  }
   det.scale = best_s;
   det.combinations = combos;
   det.lines_used = best_used;
@@ -294,8 +364,38 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
     det.p_value = 1.0;
   }
 
+  // The strongest reference line of each nuisance comb (z of the larger bin of its pair).
+  std::vector<double> comb_levels(nuisance_.size(), 0.0);
+  for (size_t c = 0; c < nuisance_.size(); ++c)
+    for (int bin : nuisance_[c].reference_bins)
+      comb_levels[c] = std::max({comb_levels[c], spectrum.z[bin], spectrum.z[bin + 1]});
+
   // Line table at the best scale.
   double num = 0.0, den = 0.0;
+  auto count_significant = [&](const LineEvidence& ev) {
+    if (ev.line.is_sideband()) {
+      ++det.significant_sidebands;
+    } else {
+      ++det.significant_harmonics;
+      // Least squares f_k = k f0 with equal errors: f0 = sum k f_k / sum k^2.
+      num += ev.line.harmonic * ev.freq_hz;
+      den += double(ev.line.harmonic) * ev.line.harmonic;
+    }
+  };
+  // A line's peak in the table: the strongest of the 4 bins around its position (the pair the
+  // comb scored and one more on each side), with p = 1 - (1 - q)^4. Real harmonics are not
+  // exactly k s f0 (slip jitter, and the comb's scale is a compromise over all its lines): on a
+  // 5 s record a 0.1 % departure at 300 Hz is 1.5 bins.
+  const int last_bin = static_cast<int>(std::min(spectrum.power.size(), spectrum.z.size())) - 1;
+  auto peak_near = [&](int i0) {
+    int i = std::clamp(i0, 0, last_bin);
+    for (int j = std::max(0, i0 - 1); j <= std::min(last_bin, i0 + 2); ++j)
+      if (spectrum.z[j] > spectrum.z[i]) i = j;
+    return i;
+  };
+  auto window_p_value = [&](double z) {
+    return -std::expm1(4.0 * std::log1p(-spectrum.BinTail(z)));
+  };
   double harmonic_sum = 0.0;
   int harmonic_count = 0;
   for (int l = 0; l < nl; ++l) {
@@ -308,19 +408,35 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
       const int i0 = static_cast<int>(std::floor(f / df));
       // The other exclusions are tested before "range": a line past the spectrum's end may come
       // back as "shaft" or "mains", so read only bins that exist.
-      if (ev.exclusion != "range" && i0 >= 0 &&
-          i0 + 1 < static_cast<int>(std::min(spectrum.power.size(), spectrum.z.size()))) {
-        ev.power = std::max(spectrum.power[i0], spectrum.power[i0 + 1]);
-        ev.z = std::max(spectrum.z[i0], spectrum.z[i0 + 1]);
+      if (ev.exclusion != "range" && i0 >= 0 && i0 + 1 <= last_bin) {
+        int i = spectrum.z[i0 + 1] > spectrum.z[i0] ? i0 + 1 : i0;
+        ev.power = spectrum.power[i];
+        ev.z = spectrum.z[i];
+        // Not scored, but counted in the family rule when it stands out of its nuisance comb.
+        ev.nuisance_z = NuisanceLevel(comb_levels, f, ev.exclusion);
+        if (ev.nuisance_z > 0.0) {
+          i = peak_near(i0);
+          ev.power = spectrum.power[i];
+          ev.z = spectrum.z[i];
+          ev.p_value = window_p_value(ev.z / ev.nuisance_z);
+          ev.modulation =
+              spectrum.envelope_mean > 0.0 ? std::sqrt(ev.power) / spectrum.envelope_mean : 0.0;
+          ev.significant =
+              ev.p_value <= options.line_p_value &&
+              (spectrum.envelope_mean <= 0.0 || ev.modulation >= options.min_modulation);
+          if (ev.significant) {
+            ev.freq_hz = InterpolatePeakHz(spectrum.power, i, df);
+            count_significant(ev);
+          }
+        }
       }
       det.lines.push_back(ev);
       continue;
     }
-    const int i0 = static_cast<int>(std::floor(f / df));
-    const int i = spectrum.z[i0 + 1] > spectrum.z[i0] ? i0 + 1 : i0;
+    const int i = peak_near(static_cast<int>(std::floor(f / df)));
     ev.power = spectrum.power[i];
     ev.z = spectrum.z[i];
-    ev.p_value = spectrum.PairPValue(ev.z);
+    ev.p_value = window_p_value(ev.z);
     ev.modulation =
         spectrum.envelope_mean > 0.0 ? std::sqrt(ev.power) / spectrum.envelope_mean : 0.0;
     ev.significant = ev.p_value <= options.line_p_value &&
@@ -330,16 +446,7 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
       harmonic_sum += -std::log(std::max(ev.p_value, 1e-300));
       ++harmonic_count;
     }
-    if (ev.significant) {
-      if (ev.line.is_sideband()) {
-        ++det.significant_sidebands;
-      } else {
-        ++det.significant_harmonics;
-        // Least squares f_k = k f0 with equal errors: f0 = sum k f_k / sum k^2.
-        num += ev.line.harmonic * ev.freq_hz;
-        den += double(ev.line.harmonic) * ev.line.harmonic;
-      }
-    }
+    if (ev.significant) count_significant(ev);
     det.lines.push_back(ev);
   }
   det.fundamental_hz = den > 0.0 ? num / den : family.fundamental_hz * best_s;

@@ -58,6 +58,10 @@ struct DetectionOptions {
   // element: +/- f_c) must show at least this many significant sidebands besides >= 2
   // harmonics: a bare harmonic comb at 5.4 orders is what CWRU's healthy record 97 has.
   int min_sidebands = 2;
+  // A shaft/mains-excluded line is tested against its nuisance comb only when that comb has at
+  // least this many reference lines (in the searched range, outside every line's search window
+  // of the family) to take the strongest from.
+  int min_nuisance_references = 3;
   // Effect size: a significant line must also modulate at least this fraction of the band's
   // mean squared envelope (level / mean(SE); an AM depth m gives m, a sharp impulse train ~1 per
   // harmonic). Significance alone grows with record length, and every bearing has weak
@@ -84,6 +88,12 @@ struct LineEvidence {
   bool significant = false;
   bool excluded = false;  // coincides with a shaft or mains harmonic, or beyond the spectrum
   std::string exclusion;  // "shaft", "mains", "range", "" otherwise
+  // A line excluded as "shaft" or "mains" is left out of the comb score, but it still counts in
+  // the family rule when it stands out of its nuisance comb: z is then tested against the
+  // strongest line of the same shaft-order / mains comb elsewhere in the searched range
+  // (nuisance_z >= 1): z is the largest within +/- 1.5 bins of the line and p_value = 1 - (1 -
+  // q)^4 with q the bin tail of z / nuisance_z. 0: not tested (too few reference lines).
+  double nuisance_z = 0.0;
 };
 
 // An SES line accounted for by a detected family: its measured (sub-bin) position and the
@@ -179,6 +189,21 @@ class CombSearch {
 
  private:
   bool Excluded(double f, double s, std::string* why) const;
+  // The strongest z among the reference lines of the nuisance combs within the guard of f; 0
+  // when f is near none or one of them has too few references.
+  double NuisanceLevel(const std::vector<double>& comb_levels,
+                       double f,
+                       const std::string& exclusion) const;
+
+  // A comb whose lines are non-evidence (shaft orders at the measured or nominal speed, a mains
+  // frequency's harmonics), with the SES bins of its lines that no line of the family can
+  // occupy: the level a coincident line is compared with.
+  struct NuisanceComb {
+    double base_hz = 0.0;
+    bool shaft = false;
+    std::vector<int> reference_bins;  // lower bin of each reference pair
+  };
+  std::vector<NuisanceComb> nuisance_;
 
   FaultFamily family_;
   DetectionContext context_;

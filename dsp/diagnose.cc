@@ -387,6 +387,33 @@ Verdict FirstDetectedVerdict(const std::vector<FamilyDetection>& ranked) {
   return Verdict::kHealthy;
 }
 
+// DiagnoseOptions::confirm_outer_race: the outer-race family is claimed only when its comb is
+// also significant on the cepstrum-pre-whitened record (varying compliance is deterministic).
+void ConfirmOuterRaceOnPrewhitened(const Record& record,
+                                   const BearingGeometry& bearing,
+                                   double shaft_hz,
+                                   const DiagnoseOptions& options,
+                                   Diagnosis* d) {
+  if (d->verdict != Verdict::kOuterRace || !options.confirm_outer_race || options.prewhiten) return;
+  DiagnoseOptions whitened = options;
+  whitened.prewhiten = true;
+  whitened.kurtogram_map = false;
+  const Diagnosis w = Diagnose(record, bearing, shaft_hz, whitened);
+  double p = 1.0;
+  for (const auto& det : w.faults)
+    if (det.component == FaultComponent::kOuterRace) p = det.p_value;
+  if (p <= options.false_alarm_probability) return;
+  for (auto& det : d->faults) {
+    if (det.component != FaultComponent::kOuterRace || !det.detected) continue;
+    det.detected = false;
+    det.reason =
+        "not claimed: the comb does not survive cepstrum pre-whitening (p = " + Fmt("%.2g", p) +
+        "): discrete lines at n Z f_c, the varying compliance of a healthy bearing (" + det.reason +
+        ")";
+  }
+  d->verdict = FirstDetectedVerdict(d->faults);
+}
+
 }  // namespace
 
 Diagnosis Diagnose(const Record& record,
@@ -648,11 +675,14 @@ Diagnosis Diagnose(const Record& record,
   d.faults = std::move(joint.ranked);
   d.explained_lines = std::move(joint.explained);
   d.roller_integer_ratio_mismatch = joint.roller_integer_ratio_mismatch;
+  d.races = joint.races;
+  if (d.races.tested && !d.races.separable) d.warnings.push_back(d.races.Describe());
 
   ApplyRecordLengthRule(duration, options.min_periods, &d);
 
   MeasureDetectedRates(shaft_measured ? *shaft_measured : shaft_hz, dopt, &d);
   d.verdict = FirstDetectedVerdict(d.faults);
+  ConfirmOuterRaceOnPrewhitened(record, bearing, shaft_hz, options, &d);
   return d;
 }
 
@@ -710,6 +740,7 @@ std::string Diagnosis::ToJson(int indent) const {
       lj["p_value"] = l.p_value;
       lj["significant"] = l.significant;
       lj["excluded"] = l.excluded ? ordered_json(l.exclusion) : ordered_json(nullptr);
+      lj["nuisance_snr"] = l.nuisance_z;
       lines.push_back(lj);
     }
     fj["harmonics"] = lines;
@@ -748,7 +779,14 @@ std::string Diagnosis::ToJson(int indent) const {
       {"roller_integer_ratio_mismatch",
        std::isfinite(roller_integer_ratio_mismatch) ? ordered_json(roller_integer_ratio_mismatch)
                                                     : ordered_json(nullptr)},
-      {"lines", explained}};
+      {"lines", explained},
+      {"races",
+       races.tested ? ordered_json{{"separable", races.separable},
+                                   {"outer_evidence", races.outer_evidence},
+                                   {"inner_evidence", races.inner_evidence},
+                                   {"outer_significant", races.outer_significant},
+                                   {"inner_significant", races.inner_significant}}
+                    : ordered_json(nullptr)}};
   j["measured"] = {{"shaft_hz", Opt(measured_shaft_hz)},
                    {"f_b_hz", Opt(measured_f_b_hz)},
                    {"f_c_hz", Opt(measured_f_c_hz)},

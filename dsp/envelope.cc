@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/multiversion.h"
 #include "dsp/prewhiten.h"
 #include "dsp/statistics.h"
 
@@ -272,6 +273,9 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
 // The second half of the SES: z (p->packed) holds m samples of SE (any scale; gain2 makes it the
 // true one) packed as z_t = se_2t + i se_2t+1; removes the mean (in double), transforms, and
 // writes P(k) = |FFT(SE - mean)_k|^2 / m^2 for k = 1..alpha_bins to power[k], power[0] = 0.
+// Multi-versioned (core/multiversion.h): the split of the half-size transform into the real one
+// is a loop over every SES bin of every band the diagnosis searches.
+SPALLKIT_MULTIVERSION
 void EnvelopeAnalyzer::PackedSesPower(
     PlansF* pp, int m, int alpha_bins, double gain2, double* power) {
   PlansF& p = *pp;

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/multiversion.h"
+#include "dsp/statistics.h"
 
 namespace spallkit::dsp {
 namespace {
@@ -104,15 +105,43 @@ void StoreSquaredEnvelopes(const std::complex<float>* env, size_t count, std::ve
   for (size_t j = 0; j < count; ++j) o[j] = c[2 * j] * c[2 * j] + c[2 * j + 1] * c[2 * j + 1];
 }
 
+// e^{2 pi i j / m}, j < m, as a coarse step times a fine step, e^{2 pi i c F / m} e^{2 pi i f / m}
+// with j = c F + f, F = floor(sqrt(m)): ~2 sqrt(m) sin/cos, and tables small enough to stay in
+// cache (PlaceBins forms the products as it goes; a full table of m roots per row was written and
+// read back from memory for the large rows). Error ~1e-7, the level of the single-precision
+// transforms the roots feed.
+struct UnitRoots {
+  int m = 0, fine = 1;
+  std::vector<float> fr, fi, cr, ci;  // fine steps f < F, coarse steps c < ceil(m / F)
+
+  void Make(int size) {
+    m = size;
+    fine = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(m))));
+    const int coarse = (m + fine - 1) / fine;
+    fr.resize(fine);
+    fi.resize(fine);
+    for (int i = 0; i < fine; ++i) {
+      fr[i] = static_cast<float>(std::cos(2 * std::numbers::pi * i / m));
+      fi[i] = static_cast<float>(std::sin(2 * std::numbers::pi * i / m));
+    }
+    cr.resize(coarse);
+    ci.resize(coarse);
+    for (int c = 0; c < coarse; ++c) {
+      const double angle = 2 * std::numbers::pi * static_cast<double>(c) * fine / m;
+      cr[c] = static_cast<float>(std::cos(angle));
+      ci[c] = static_cast<float>(std::sin(angle));
+    }
+  }
+};
+
 // Per-thread buffers, kept between calls and grown on demand: a 10 s record at 48 kHz needs
 // ~20 MB of them, and fresh allocations of that size cost page faults on every call (10 % of the
-// run time); the root table is also kept while the record length stays the same.
+// run time).
 struct ChainBuffers {
   size_t row_size = 0, node_size = 0;
   FftwArray<std::complex<float>> child, parent;  // all envelopes of a row, node after node
   FftwArray<std::complex<float>> in, odd;        // one node's transform input and output
-  std::vector<std::complex<float>> roots;        // e^{2 pi i j / m_top}
-  std::vector<std::complex<float>> row_roots;    // the current row's e^{2 pi i j / m_p}
+  UnitRoots row_roots;                           // the current row's e^{2 pi i j / m_p}
   std::unique_ptr<double[]> power;
 };
 
@@ -132,31 +161,6 @@ ChainBuffers& ThreadBuffers(size_t row_size, size_t node_size) {
   return b;
 }
 
-// out[j] = e^{2 pi i j / m}, j < m, as coarse step times fine step: ~2 sqrt(m) sin/cos instead
-// of m (which would cost more than the transforms the table serves), and a product loop that
-// vectorises. Error ~1e-7, the level of the single-precision transforms it feeds.
-void UnitRoots(int m, std::vector<std::complex<float>>* out) {
-  const int fine = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(m))));
-  const int coarse = (m + fine - 1) / fine;
-  std::vector<float> fr(fine), fi(fine);
-  for (int i = 0; i < fine; ++i) {
-    fr[i] = static_cast<float>(std::cos(2 * std::numbers::pi * i / m));
-    fi[i] = static_cast<float>(std::sin(2 * std::numbers::pi * i / m));
-  }
-  out->resize(static_cast<size_t>(coarse) * fine);
-  float* o = reinterpret_cast<float*>(out->data());
-  for (int c = 0; c < coarse; ++c) {
-    const double angle = 2 * std::numbers::pi * static_cast<double>(c) * fine / m;
-    const float cr = static_cast<float>(std::cos(angle)), ci = static_cast<float>(std::sin(angle));
-    float* row = o + 2 * static_cast<size_t>(c) * fine;
-    for (int i = 0; i < fine; ++i) {
-      row[2 * i] = cr * fr[i] - ci * fi[i];
-      row[2 * i + 1] = cr * fi[i] + ci * fr[i];
-    }
-  }
-  out->resize(m);
-}
-
 // max(0, <|c|^4>/<|c|^2>^2 - 2) over m envelope samples.
 double EnvelopeKurtosis(const std::complex<float>* envelope, int m, double* power) {
   const float* c = reinterpret_cast<const float*>(envelope);
@@ -169,16 +173,15 @@ double EnvelopeKurtosis(const std::complex<float>* envelope, int m, double* powe
   return sum2 > 0 ? std::max(0.0, m * sum4 / (sum2 * sum2) - 2.0) : 0.0;
 }
 
-// out[k mod m_out] = in[k - lo] * tw[(k mod m_tw) * tw_stride] for k in [lo, hi) (tw null: no
-// factor), in runs where neither index wraps, so the inner loops are contiguous. The complex
-// product is written out: std::complex's operator* checks for NaN/inf and does not vectorise.
+// out[k mod m_out] = in[k - lo] * e^{2 pi i k / roots.m} for k in [lo, hi) (roots null: no
+// factor), in runs where no index wraps and the coarse root is fixed, so the inner loops are
+// contiguous. The complex products are written out: std::complex's operator* checks for NaN/inf
+// and does not vectorise.
 void PlaceBins(const std::complex<float>* in,
                int lo,
                int hi,
                int m_out,
-               const std::complex<float>* tw,
-               int m_tw,
-               int tw_stride,
+               const UnitRoots* roots,
                std::complex<float>* out) {
   int k = lo;
   while (k < hi) {
@@ -186,13 +189,15 @@ void PlaceBins(const std::complex<float>* in,
     int run = std::min(hi - k, m_out - p);
     const float* v = reinterpret_cast<const float*>(in + (k - lo));
     float* o = reinterpret_cast<float*>(out + p);
-    if (tw) {
-      const int q = k % m_tw;
-      run = std::min(run, m_tw - q);
-      const float* t = reinterpret_cast<const float*>(tw + static_cast<size_t>(q) * tw_stride);
-      const size_t step = 2 * static_cast<size_t>(tw_stride);
+    if (roots) {
+      const int q = k % roots->m;
+      const int c = q / roots->fine, f0 = q % roots->fine;
+      run = std::min({run, roots->m - q, roots->fine - f0});
+      const float cr = roots->cr[c], ci = roots->ci[c];
+      const float* fr = roots->fr.data() + f0;
+      const float* fi = roots->fi.data() + f0;
       for (int j = 0; j < run; ++j) {
-        const float tr = t[j * step], ti = t[j * step + 1];
+        const float tr = cr * fr[j] - ci * fi[j], ti = cr * fi[j] + ci * fr[j];
         o[2 * j] = v[2 * j] * tr - v[2 * j + 1] * ti;
         o[2 * j + 1] = v[2 * j] * ti + v[2 * j + 1] * tr;
       }
@@ -267,7 +272,7 @@ void ProcessChain(const std::complex<float>* xf,
         continue;
       }
       ZeroOutsideBins(lo, hi, m, in);
-      PlaceBins(xf + lo, lo, hi, m, nullptr, 1, 1, in);
+      PlaceBins(xf + lo, lo, hi, m, nullptr, in);
       fft.Execute(in, env);
       row[i] = EnvelopeKurtosis(env, m, b.power.get());
     }
@@ -275,18 +280,11 @@ void ProcessChain(const std::complex<float>* xf,
   }
   if (chain.size() == 1) return;
 
-  // e^{2 pi i j / m_top}, j < m_top (kept while m_top stays the same); a row with
-  // m_p = m_top / q uses every q-th entry.
-  if (b.roots.size() != static_cast<size_t>(m_top)) UnitRoots(m_top, &b.roots);
   for (size_t level = 1; level < chain.size(); ++level) {
     const ChainRow& up = chain[level];
     const int mp = up.m, mc = up.m / 2;
-    const int stride = m_top / mp;
     ComplexFftF fft(mc, +1);
-    // This row's roots, e^{2 pi i j / m_p} = roots[j * stride], gathered once into a contiguous
-    // table: read in place, every bin's factor would be its own cache line of the m_top table.
-    b.row_roots.resize(mp);
-    for (int j = 0; j < mp; ++j) b.row_roots[j] = b.roots[static_cast<size_t>(j) * stride];
+    b.row_roots.Make(mp);  // e^{2 pi i j / m_p}
     std::vector<double>& row = (*result)[up.row];
     row.assign(up.nodes, 0.0);
     std::complex<float>* odd = in + mc;  // second half of the node buffer (size m_top >= 2 mc)
@@ -301,7 +299,7 @@ void ProcessChain(const std::complex<float>* xf,
       }
       SPALLKIT_CHECK(hi - lo <= mc, "kurtogram node of " << hi - lo << " bins, m " << mc);
       ZeroOutsideBins(lo, hi, mc, in);
-      PlaceBins(xf + lo, lo, hi, mc, b.row_roots.data(), mp, 1, in);
+      PlaceBins(xf + lo, lo, hi, mc, &b.row_roots, in);
       fft.Execute(in, odd);
       // Even samples: the sum of the children; interleaved with the odd ones.
       const float* lower = reinterpret_cast<const float*>(child + static_cast<size_t>(2 * i) * mc);
@@ -312,8 +310,10 @@ void ProcessChain(const std::complex<float>* xf,
       // Four samples of each at a time with vector shuffles (mc is a multiple of 64, see
       // FftFastSize), accumulating the moments on the way (|c|^2 in float, sums in double).
       typedef float F8 __attribute__((vector_size(32)));
-      typedef double D4 __attribute__((vector_size(32)));
-      D4 acc2 = {0, 0, 0, 0}, acc4 = {0, 0, 0, 0}, acc2b = acc2, acc4b = acc4;
+      // The eight |c|^2 of a step are widened to doubles as one vector (a split into halves
+      // made GCC spill them through the stack); lanes 0-3 and 4-7 are summed as two accumulators.
+      typedef double D8 __attribute__((vector_size(64)));
+      D8 acc2 = {0, 0, 0, 0, 0, 0, 0, 0}, acc4 = acc2;
       for (int s = 0; s < mc; s += 4) {
         F8 l, u, d;
         std::memcpy(&l, lower + 2 * s, sizeof(l));
@@ -327,19 +327,14 @@ void ProcessChain(const std::complex<float>* xf,
         const F8 a = sum * sum, c = d * d;
         const F8 power = __builtin_shufflevector(a, c, 0, 2, 4, 6, 8, 10, 12, 14) +
                          __builtin_shufflevector(a, c, 1, 3, 5, 7, 9, 11, 13, 15);
-        const D4 lo4 =
-            __builtin_convertvector(__builtin_shufflevector(power, power, 0, 1, 2, 3), D4);
-        const D4 hi4 =
-            __builtin_convertvector(__builtin_shufflevector(power, power, 4, 5, 6, 7), D4);
-        acc2 += lo4;
-        acc4 += lo4 * lo4;
-        acc2b += hi4;
-        acc4b += hi4 * hi4;
+        const D8 wide = __builtin_convertvector(power, D8);
+        acc2 += wide;
+        acc4 += wide * wide;
       }
-      acc2 += acc2b;
-      acc4 += acc4b;
-      const double sum2 = (acc2[0] + acc2[1]) + (acc2[2] + acc2[3]);
-      const double sum4 = (acc4[0] + acc4[1]) + (acc4[2] + acc4[3]);
+      const double sum2 =
+          ((acc2[0] + acc2[4]) + (acc2[1] + acc2[5])) + ((acc2[2] + acc2[6]) + (acc2[3] + acc2[7]));
+      const double sum4 =
+          ((acc4[0] + acc4[4]) + (acc4[1] + acc4[5])) + ((acc4[2] + acc4[6]) + (acc4[3] + acc4[7]));
       row[i] = sum2 > 0 ? std::max(0.0, mp * sum4 / (sum2 * sum2) - 2.0) : 0.0;
     }
     if (up.keep)
@@ -348,6 +343,17 @@ void ProcessChain(const std::complex<float>* xf,
     std::swap(child, parent);
     std::swap(energy, parent_energy);
   }
+}
+
+// out[k] = float(x[k] * scale), a loop that vectorises (multi-versioned: core/multiversion.h).
+SPALLKIT_MULTIVERSION
+void ScaleToFloat(const std::complex<double>* x,
+                  int count,
+                  double scale,
+                  std::complex<float>* out) {
+  const double* in = reinterpret_cast<const double*>(x);
+  float* o = reinterpret_cast<float*>(out);
+  for (int j = 0; j < 2 * count; ++j) o[j] = static_cast<float>(in[j] * scale);
 }
 
 int MaxLevelFor(int n) {
@@ -416,40 +422,23 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
 
   // Node energies by Parseval (analytic weights). A node holding less than kEmptyNode of the
   // record's energy carries only rounding residue, whose kurtosis is meaningless: reported as 0.
-  // sum |X_k|^2 with vector accumulators (a plain loop is a serial chain of additions), then
-  // the edge bins' analytic weights (1/4 of their energy) as corrections.
-  double total_energy = 0;
-  {
-    typedef double D4 __attribute__((vector_size(32)));
-    const double* v = reinterpret_cast<const double*>(x.data());
-    const int count = 2 * bins;
-    D4 a = {0, 0, 0, 0}, b = a;
-    int j = 0;
-    for (; j + 8 <= count; j += 8) {
-      D4 p, q;
-      std::memcpy(&p, v + j, sizeof(p));
-      std::memcpy(&q, v + j + 4, sizeof(q));
-      a += p * p;
-      b += q * q;
-    }
-    a += b;
-    total_energy = (a[0] + a[1]) + (a[2] + a[3]);
-    for (; j < count; ++j) total_energy += v[j] * v[j];
-    total_energy -= 0.75 * std::norm(x[0]);
-    if (2 * (bins - 1) == n) total_energy -= 0.75 * std::norm(x[bins - 1]);
-  }
+  // sum |X_k|^2, then the edge bins' analytic weights (1/4 of their energy) as corrections.
+  double total_energy =
+      SumOfSquares({reinterpret_cast<const double*>(x.data()), 2 * static_cast<size_t>(bins)});
+  total_energy -= 0.75 * std::norm(x[0]);
+  if (2 * (bins - 1) == n) total_energy -= 0.75 * std::norm(x[bins - 1]);
   const double scale = total_energy > 0 ? 1.0 / std::sqrt(total_energy / bins) : 1.0;
   constexpr double kEmptyNode = 1e-20;
   // The spectrum in single precision from here on, scaled to unit RMS bin (so the float range is
   // never an issue) and with the analytic-signal weights (1, and 1/2 at DC and Nyquist). Each row
   // streams it once; half the bytes of the double spectrum.
-  std::vector<std::complex<float>> xf(bins);
-  for (int k = 0; k < bins; ++k) {
-    const bool edge = (k == 0) || (2 * k == n);
-    const double w = edge ? 0.5 * scale : scale;
-    xf[k] = std::complex<float>(static_cast<float>(x[k].real() * w),
-                                static_cast<float>(x[k].imag() * w));
-  }
+  // Per thread and kept between calls: a fresh 2 MB vector costs a zero fill and page faults.
+  thread_local std::vector<std::complex<float>> xf;
+  xf.resize(bins);
+  ScaleToFloat(x.data(), bins, scale, xf.data());
+  xf[0] *= 0.5f;
+  if (2 * (bins - 1) == n) xf[bins - 1] *= 0.5f;
+  const std::complex<float>* spectrum_f = xf.data();  // this thread's: the chains' threads read it
   const double empty_energy = kEmptyNode * total_energy * scale * scale;
 
   // The two chains: binary rows (L, ..., 1, 0) and ternary rows (L-0.4, ..., 1.6), deepest
@@ -486,7 +475,13 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   std::vector<std::vector<double>> result(rows.size());
   if (options.envelope_buffers) out.squared_envelopes = std::move(*options.envelope_buffers);
   out.squared_envelopes.resize(rows.size());
-  for (auto& row : out.squared_envelopes) row.clear();  // kept rows are resized (capacity reused)
+  // Rows not kept are emptied; kept rows keep their contents until overwritten, so that reused
+  // buffers of the right size are not zero-filled first (resize only fills what it adds).
+  std::vector<char> kept(rows.size(), 0);
+  for (const auto& chain : chains)
+    for (const auto& row : chain) kept[row.row] = row.keep;
+  for (size_t r = 0; r < rows.size(); ++r)
+    if (!kept[r]) out.squared_envelopes[r].clear();
   out.envelope_sizes.assign(rows.size(), 0);
   for (const auto& chain : chains)
     for (const auto& row : chain) out.envelope_sizes[row.row] = row.m;
@@ -501,7 +496,7 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
 #pragma omp parallel for num_threads(std::min(threads, chain_count)) schedule(static, 1)
 #endif
   for (int c = 0; c < chain_count; ++c) {
-    ProcessChain(xf.data(), n, empty_energy, chains[c], &result, &out.squared_envelopes);
+    ProcessChain(spectrum_f, n, empty_energy, chains[c], &result, &out.squared_envelopes);
   }
   for (const Row& row : rows) out.levels.push_back(row.level);
   out.kurtosis = std::move(result);

@@ -125,6 +125,7 @@ TimeStatistics ComputeTimeStatistics(std::span<const double> x) {
   return s;
 }
 
+SPALLKIT_MULTIVERSION
 double SumOfSquares(std::span<const double> v) {
   typedef double D4 __attribute__((vector_size(32)));
   const int count = static_cast<int>(v.size());

@@ -117,39 +117,33 @@ void BlendMask(cv::Mat& img, const cv::Mat& mask, int x, int y, const cv::Scalar
 
 void Text(cv::Mat& img,
           const std::string& text,
-          double x,
-          double y,
-          double scale,
-          const cv::Scalar& color,
-          int thickness,
+          cv::Point2d at,
+          const TextStyle& ts,
           HAlign h,
           VAlign v) {
   if (text.empty()) return;
-  const TextMask tm = RenderTextMask(text, scale, thickness);
-  double left = x;
+  const TextMask tm = RenderTextMask(text, ts.scale, ts.thickness);
+  double left = at.x;
   if (h == HAlign::kCenter) left -= tm.size.width / 2.0;
   if (h == HAlign::kRight) left -= tm.size.width;
-  double baseline = y;
+  double baseline = at.y;
   if (v == VAlign::kTop) baseline += tm.size.height;
   if (v == VAlign::kMiddle) baseline += tm.size.height / 2.0;
   BlendMask(img,
             tm.mask,
             static_cast<int>(std::lround(left)) - tm.origin_x,
             static_cast<int>(std::lround(baseline)) - tm.baseline_y,
-            color);
+            ts.color);
 }
 
 cv::Size RotatedText(cv::Mat& img,
                      const std::string& text,
-                     int x,
-                     int y,
-                     double scale,
-                     const cv::Scalar& color,
-                     int thickness) {
-  const TextMask tm = RenderTextMask(text, scale, thickness);
+                     cv::Point top_left,
+                     const TextStyle& ts) {
+  const TextMask tm = RenderTextMask(text, ts.scale, ts.thickness);
   cv::Mat rotated;
   cv::rotate(tm.mask, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
-  BlendMask(img, rotated, x, y, color);
+  BlendMask(img, rotated, top_left.x, top_left.y, ts.color);
   return rotated.size();
 }
 
@@ -198,22 +192,16 @@ void DrawTitleAndAxisLabels(cv::Mat& img,
     }
     Text(img,
          title,
-         img.cols / 2.0,
-         pad,
-         scale,
-         kBlack,
-         st.stroke() + 1,
+         {img.cols / 2.0, static_cast<double>(pad)},
+         {scale, kBlack, st.stroke() + 1},
          HAlign::kCenter,
          VAlign::kTop);
   }
   if (!x_label.empty()) {
     Text(img,
          x_label,
-         area.x + area.width / 2.0,
-         img.rows - pad - 2,
-         st.label(),
-         kBlack,
-         st.stroke(),
+         {area.x + area.width / 2.0, static_cast<double>(img.rows - pad - 2)},
+         {st.label(), kBlack, st.stroke()},
          HAlign::kCenter,
          VAlign::kBaseline);
   }
@@ -221,12 +209,26 @@ void DrawTitleAndAxisLabels(cv::Mat& img,
     const cv::Size ts = TextSize(y_label, st.label(), st.stroke());
     RotatedText(img,
                 y_label,
-                pad,
-                area.y + area.height / 2 - ts.width / 2,
-                st.label(),
-                kBlack,
-                st.stroke());
+                {pad, area.y + area.height / 2 - ts.width / 2},
+                {st.label(), kBlack, st.stroke()});
   }
+}
+
+void DrawXTick(
+    cv::Mat& img, const Style& st, int px, int y0, int len, int pad, const std::string& label) {
+  cv::line(img, {px, y0}, {px, y0 + len}, kBlack, 1);
+  Text(img, label, cv::Point(px, y0 + len + pad / 2), {st.tick()}, HAlign::kCenter, VAlign::kTop);
+}
+
+void DrawYTick(cv::Mat& img,
+               const Style& st,
+               int py,
+               int x_end,
+               int len,
+               int label_x,
+               const std::string& label) {
+  cv::line(img, {x_end - len, py}, {x_end, py}, kBlack, 1);
+  Text(img, label, cv::Point(label_x, py), {st.tick()}, HAlign::kRight, VAlign::kMiddle);
 }
 
 }  // namespace spallkit::plot::internal

@@ -72,28 +72,25 @@ void BlendMask(cv::Mat& img, const cv::Mat& mask, int x, int y, const cv::Scalar
 enum class HAlign { kLeft, kCenter, kRight };
 enum class VAlign { kTop, kMiddle, kBaseline };
 
-// Draws text with its anchor at (x, y) aligned as asked (vertical alignment by the cap height of
+// How text is drawn: Hershey scale (Style's sizes), colour and stroke thickness.
+struct TextStyle {
+  double scale = 0.5;
+  cv::Scalar color = kText;
+  int thickness = 1;
+};
+
+// Draws text with its anchor at `at` aligned as asked (vertical alignment by the cap height of
 // the normal-size text, so superscripts do not shift a label).
-void Text(cv::Mat& img,
-          const std::string& text,
-          double x,
-          double y,
-          double scale,
-          const cv::Scalar& color,
-          int thickness,
-          HAlign h,
-          VAlign v);
+void Text(
+    cv::Mat& img, const std::string& text, cv::Point2d at, const TextStyle& ts, HAlign h, VAlign v);
 
 // Text rotated 90 degrees counter-clockwise (reads bottom to top), blended through its rotated
-// coverage mask so that the anti-aliasing survives. (x, y) is the top-left corner of the rotated
-// box; returns its size.
+// coverage mask so that the anti-aliasing survives. `top_left` is the top-left corner of the
+// rotated box; returns its size.
 cv::Size RotatedText(cv::Mat& img,
                      const std::string& text,
-                     int x,
-                     int y,
-                     double scale,
-                     const cv::Scalar& color,
-                     int thickness);
+                     cv::Point top_left,
+                     const TextStyle& ts);
 
 void DashedVLine(cv::Mat& img, int x, int y0, int y1, const cv::Scalar& color, int thickness);
 
@@ -113,6 +110,20 @@ void DrawTitleAndAxisLabels(cv::Mat& img,
                             const std::string& title,
                             const std::string& x_label,
                             const std::string& y_label);
+
+// A tick below the plot area: a mark of `len` pixels down from (px, y0) and its label centred
+// under it, `pad` / 2 lower.
+void DrawXTick(
+    cv::Mat& img, const Style& st, int px, int y0, int len, int pad, const std::string& label);
+// A tick left of the plot area: a mark from (x_end - len, py) to (x_end, py) and its label
+// right-aligned at x = label_x, centred on py.
+void DrawYTick(cv::Mat& img,
+               const Style& st,
+               int py,
+               int x_end,
+               int len,
+               int label_x,
+               const std::string& label);
 
 // Renders with `render` and writes the PNG atomically; a bad plot spec is reported with the path.
 template <typename Render>

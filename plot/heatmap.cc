@@ -146,9 +146,7 @@ void DrawAxes(cv::Mat& img, const Heatmap& map, const Style& st, const Layout& l
   const std::vector<Tick> xticks = LinearTicks(map.x_min, map.x_max, std::max(4, area.width / 150));
   for (const Tick& t : xticks) {
     const int px = static_cast<int>(std::lround(x_to_px(t.value)));
-    const int y0 = area.y + area.height;
-    cv::line(img, {px, y0}, {px, y0 + tl}, kBlack, 1);
-    Text(img, t.label, px, y0 + tl + pad / 2, st.tick(), kText, 1, HAlign::kCenter, VAlign::kTop);
+    DrawXTick(img, st, px, area.y + area.height, tl, pad, t.label);
   }
   if (categorical) {
     const double ch = static_cast<double>(area.height) / map.rows;
@@ -156,30 +154,12 @@ void DrawAxes(cv::Mat& img, const Heatmap& map, const Style& st, const Layout& l
     for (int r = 0; r < map.rows; r += every) {
       const int draw_r = map.row0_at_top ? r : map.rows - 1 - r;
       const int py = static_cast<int>(std::lround(area.y + (draw_r + 0.5) * ch));
-      cv::line(img, {area.x - tl, py}, {area.x - 1, py}, kBlack, 1);
-      Text(img,
-           map.y_tick_labels[r],
-           area.x - tl - pad / 2,
-           py,
-           st.tick(),
-           kText,
-           1,
-           HAlign::kRight,
-           VAlign::kMiddle);
+      DrawYTick(img, st, py, area.x - 1, tl - 1, area.x - tl - pad / 2, map.y_tick_labels[r]);
     }
   } else {
     for (const Tick& t : yticks) {
       const int py = static_cast<int>(std::lround(y_to_px(t.value)));
-      cv::line(img, {area.x - tl, py}, {area.x - 1, py}, kBlack, 1);
-      Text(img,
-           t.label,
-           area.x - tl - pad / 2,
-           py,
-           st.tick(),
-           kText,
-           1,
-           HAlign::kRight,
-           VAlign::kMiddle);
+      DrawYTick(img, st, py, area.x - 1, tl - 1, area.x - tl - pad / 2, t.label);
     }
   }
 }
@@ -210,17 +190,20 @@ void DrawColorbar(cv::Mat& img,
         std::lround(bar.y + bar.height - 1 - (t.value - v_lo) / (v_hi - v_lo) * (bar.height - 1)));
     const int x0 = bar.x + bar.width;
     cv::line(img, {x0, py}, {x0 + tl, py}, kBlack, 1);
-    Text(img, t.label, x0 + tl + pad / 2, py, st.tick(), kText, 1, HAlign::kLeft, VAlign::kMiddle);
+    Text(img,
+         t.label,
+         cv::Point(x0 + tl + pad / 2, py),
+         {st.tick()},
+         HAlign::kLeft,
+         VAlign::kMiddle);
   }
   if (!map.colorbar_label.empty()) {
     const cv::Size ts = TextSize(map.colorbar_label, st.label(), st.stroke());
-    RotatedText(img,
-                map.colorbar_label,
-                bar.x + bar.width + tl + pad / 2 + ctick_w + pad,
-                bar.y + bar.height / 2 - ts.width / 2,
-                st.label(),
-                kBlack,
-                st.stroke());
+    RotatedText(
+        img,
+        map.colorbar_label,
+        {bar.x + bar.width + tl + pad / 2 + ctick_w + pad, bar.y + bar.height / 2 - ts.width / 2},
+        {st.label(), kBlack, st.stroke()});
   }
 }
 

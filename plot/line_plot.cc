@@ -259,8 +259,7 @@ std::vector<cv::Rect> DrawMarkers(cv::Mat& inner,
     if (!placed) continue;
     label_boxes.push_back(box);
     // A white halo behind the text keeps it readable over grid and data.
-    RotatedText(
-        inner, m.label, box.x, box.y, scale, Bgr(m.thin ? Lighten(m.color, 0.1) : m.color), 1);
+    RotatedText(inner, m.label, box.tl(), {scale, Bgr(m.thin ? Lighten(m.color, 0.1) : m.color)});
   }
   return label_boxes;
 }
@@ -297,23 +296,12 @@ void DrawFrameAndTicks(
   const int tl = st.tick_len();
   for (const Tick& t : xticks) {
     const int px = static_cast<int>(std::lround(ax.ToPixel(t.value)));
-    const int y0 = area.y + area.height;
-    cv::line(img, {px, y0}, {px, y0 + tl}, kBlack, 1);
-    Text(img, t.label, px, y0 + tl + pad / 2, st.tick(), kText, 1, HAlign::kCenter, VAlign::kTop);
+    DrawXTick(img, st, px, area.y + area.height, tl, pad, t.label);
   }
   for (const Tick& t : yticks) {
     const int py = static_cast<int>(std::lround(ay.ToPixel(t.value)));
-    const int len = t.label.empty() ? tl / 2 : tl;
-    cv::line(img, {area.x - len, py}, {area.x, py}, kBlack, 1);
-    Text(img,
-         t.label,
-         area.x - tl - pad / 2,
-         py,
-         st.tick(),
-         kText,
-         1,
-         HAlign::kRight,
-         VAlign::kMiddle);
+    const int len = t.label.empty() ? tl / 2 : tl;  // minor ticks are shorter
+    DrawYTick(img, st, py, area.x, len, area.x - tl - pad / 2, t.label);
   }
 }
 
@@ -362,11 +350,8 @@ void DrawLegend(cv::Mat& img,
                  cv::LINE_AA);
         Text(img,
              entries[i]->label,
-             box.x + 2 * pad + sample_w,
-             cy,
-             st.legend(),
-             kText,
-             1,
+             cv::Point(box.x + 2 * pad + sample_w, cy),
+             {st.legend()},
              HAlign::kLeft,
              VAlign::kMiddle);
       }

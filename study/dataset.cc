@@ -244,7 +244,7 @@ CaseLabels MakeLabels(const sim::Scene& scene) {
     l.f_b_hz = Round12(f.f_b_hz);
     l.f_c_hz = Round12(f.cage_hz);
   }
-  l.fidelity = scene.model.fidelity;
+  l.fidelity = sim::FidelityName(scene.model.fidelity);
   l.duration_s = scene.run.duration_s;
   l.output_rate_hz = scene.run.output_rate_hz;
   return l;

@@ -129,13 +129,7 @@ int DefectIndex(const std::string& key) {
 // The base scene's defects (as tables), for copying when a case adds defects.
 std::vector<toml::table> BaseDefects(const Sweep& sweep) {
   std::vector<toml::table> out;
-  toml::table root;
-  try {
-    root = toml::parse(sweep.base_text, sweep.base_scene);
-  } catch (const toml::parse_error& e) {
-    throw InputError(sweep.base_scene + ":" + std::to_string(e.source().begin.line) + ": " +
-                     std::string(e.description()));
-  }
+  toml::table root = sim::ParseToml(sweep.base_text, sweep.base_scene);
   if (auto* arr = root["defects"].as_array())
     for (auto& d : *arr)
       if (auto* t = d.as_table()) out.push_back(*t);
@@ -219,13 +213,7 @@ std::vector<std::string> Sweep::ParameterKeys() const {
 Sweep ParseSweep(const std::string& toml_text,
                  const std::string& source_name,
                  const std::string& base_dir) {
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, source_name);
-  } catch (const toml::parse_error& e) {
-    throw InputError(source_name + ":" + std::to_string(e.source().begin.line) + ": " +
-                     std::string(e.description()));
-  }
+  toml::table root = sim::ParseToml(toml_text, source_name);
   Sweep sweep;
   sweep.path = source_name;
   sweep.text = toml_text;

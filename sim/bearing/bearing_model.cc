@@ -8,27 +8,6 @@
 
 namespace spallkit::sim {
 
-const char* FidelityName(Fidelity fidelity) {
-  switch (fidelity) {
-    case Fidelity::kFe:
-      return "fe";
-    case Fidelity::kHybrid:
-      return "hybrid";
-    case Fidelity::kLumped:
-      return "lumped";
-  }
-  return "?";
-}
-
-bool ParseFidelity(const std::string& name, Fidelity* fidelity) {
-  for (Fidelity f : {Fidelity::kFe, Fidelity::kHybrid, Fidelity::kLumped})
-    if (name == FidelityName(f)) {
-      *fidelity = f;
-      return true;
-    }
-  return false;
-}
-
 bool LumpedOptions::IsValid(std::string* error) const {
   auto fail = [&](const char* m) {
     if (error) *error = m;
@@ -74,11 +53,10 @@ double BearingModel::TheoreticalCageSpeed(double t) const {
 
 std::unique_ptr<BearingModel> MakeBearingModel(const Scene& scene,
                                                const BearingModelOptions& options) {
-  Fidelity f;
-  if (!ParseFidelity(scene.model.fidelity, &f))
-    throw InputError(scene.source + ": model.fidelity: \"" + scene.model.fidelity +
-                     "\" must be resolved to \"fe\", \"hybrid\" or \"lumped\" before a model is "
-                     "built (ChooseFidelity)");
+  const Fidelity f = scene.model.fidelity;
+  if (f == Fidelity::kAuto)
+    throw InputError(scene.source + ": model.fidelity: \"auto\" must be resolved to \"fe\", " +
+                     "\"hybrid\" or \"lumped\" before a model is built (ChooseFidelity)");
   if (f == Fidelity::kLumped) return std::make_unique<LumpedBearingModel>(scene, options);
   return std::make_unique<FeBearingModel>(scene, options);
 }

@@ -22,12 +22,6 @@
 
 namespace spallkit::sim {
 
-enum class Fidelity { kFe, kHybrid, kLumped };
-// Scene-file names: "fe", "hybrid", "lumped".
-const char* FidelityName(Fidelity fidelity);
-// False for any other name.
-bool ParseFidelity(const std::string& name, Fidelity* fidelity);
-
 // Housing fit of the lumped model (lumped_model.h).
 struct LumpedOptions {
   // Element size of the FE housing mesh the stiffness and sensor gains are fitted on (m).
@@ -145,8 +139,8 @@ class BearingModel {
   solver::TimeFunction speed_;
 };
 
-// The model for scene.model.fidelity ("fe", "hybrid" or "lumped"; "auto" must be resolved
-// first, fidelity_choice.h). Throws InputError naming the scene key (or option).
+// The model for scene.model.fidelity (kFe, kHybrid or kLumped; kAuto must be resolved first,
+// fidelity_choice.h). Throws InputError naming the scene key (or option).
 std::unique_ptr<BearingModel> MakeBearingModel(const Scene& scene,
                                                const BearingModelOptions& options = {});
 

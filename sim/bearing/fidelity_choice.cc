@@ -2,8 +2,6 @@
 
 #include <sstream>
 
-#include "core/error.h"
-
 namespace spallkit::sim {
 
 const std::vector<RungErrors>& MeasuredRungErrors() {
@@ -21,9 +19,8 @@ const std::vector<RungErrors>& MeasuredRungErrors() {
 
 FidelityChoice ChooseFidelity(const Scene& scene) {
   FidelityChoice c;
-  if (scene.model.fidelity != "auto") {
-    if (!ParseFidelity(scene.model.fidelity, &c.fidelity))
-      throw InputError(scene.source + ": model.fidelity: unknown \"" + scene.model.fidelity + "\"");
+  if (scene.model.fidelity != Fidelity::kAuto) {
+    c.fidelity = scene.model.fidelity;
     c.reason = std::string("fidelity ") + FidelityName(c.fidelity) + " (set in the scene)";
     return c;
   }
@@ -50,7 +47,7 @@ FidelityChoice ChooseFidelity(const Scene& scene) {
 Scene WithChosenFidelity(const Scene& scene, FidelityChoice* choice) {
   const FidelityChoice c = ChooseFidelity(scene);
   Scene s = scene;
-  s.model.fidelity = FidelityName(c.fidelity);
+  s.model.fidelity = c.fidelity;
   if (choice) *choice = c;
   return s;
 }

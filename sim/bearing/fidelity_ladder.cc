@@ -30,7 +30,7 @@ double HarrisJonesQmax(const Scene& scene) {
 
 LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duration) {
   Scene s = scene;
-  s.model.fidelity = FidelityName(rung.fidelity);
+  s.model.fidelity = rung.fidelity;
   if (rung.fidelity != Fidelity::kLumped) s.mesh.size_m = s.mesh.contact_size_m = rung.mesh_m;
   s.run.duration_s = duration;
   s.solver.threads = 1;
@@ -98,8 +98,11 @@ bool LadderOptions::Validate(std::string* error) const {
   };
   if (scenes.empty()) return fail("no scenes");
   if (rungs.size() < 2) return fail("needs at least two rungs (the last is the reference)");
-  for (const LadderRung& r : rungs)
+  for (const LadderRung& r : rungs) {
+    if (r.fidelity == Fidelity::kAuto)
+      return fail("a rung's fidelity must be fe, hybrid or lumped");
     if (r.fidelity != Fidelity::kLumped && !(r.mesh_m > 0)) return fail("mesh size must be > 0");
+  }
   if (!(duration_s > 0)) return fail("duration_s must be > 0");
   return true;
 }

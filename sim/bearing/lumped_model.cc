@@ -19,7 +19,7 @@ namespace spallkit::sim {
 // The scene whose housing is fitted: the hybrid model's housing mesh at the fit's size.
 Scene HousingFitScene(const Scene& scene, const LumpedOptions& options) {
   Scene s = scene;
-  s.model.fidelity = "hybrid";
+  s.model.fidelity = Fidelity::kHybrid;
   s.mesh.size_m = s.mesh.contact_size_m = options.fit_mesh_size_m;
   s.mesh.adapter_size_m = std::max(s.mesh.adapter_size_m, 0.5 * options.fit_mesh_size_m);
   s.defects.clear();
@@ -59,9 +59,9 @@ std::string CacheKey(const Scene& scene, const LumpedOptions& o) {
      << g.diametral_clearance_m << ' ' << g.outer_ring_outer_diameter_m << ' ' << g.adapter_width_m
      << ' ' << g.adapter_height_m << ' ' << g.roller_phase_rad << ' '
      << scene.operation.radial_load_n << ' ' << scene.damping.ratio << ' '
-     << scene.damping.reference_hz << ' ' << scene.mesh.adapter_size_m << ' ' << scene.model.adapter
-     << ' ' << o.fit_mesh_size_m << ' ' << o.fit_duration_s << ' ' << o.fit_damping_ratio << ' '
-     << o.sensor_response_s << ' ' << o.sensor_sample_hz;
+     << scene.damping.reference_hz << ' ' << scene.mesh.adapter_size_m << ' '
+     << AdapterModelName(scene.model.adapter) << ' ' << o.fit_mesh_size_m << ' ' << o.fit_duration_s
+     << ' ' << o.fit_damping_ratio << ' ' << o.sensor_response_s << ' ' << o.sensor_sample_hz;
   for (const Material* m : {&scene.materials.outer_ring, &scene.materials.adapter})
     os << ' ' << m->youngs_modulus_pa << ' ' << m->poisson_ratio << ' ' << m->density_kg_m3;
   for (const Sensor& s : scene.sensors) {

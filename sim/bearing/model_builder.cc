@@ -48,7 +48,7 @@ BodyMotion FitMotion(const fe::NodalState& s, const std::vector<int>& nodes) {
 FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& options)
     : BearingModel(scene, options) {
   const bool housing_only = options_.housing_only;
-  const bool hybrid = scene_.model.fidelity == "hybrid" || housing_only;
+  const bool hybrid = scene_.model.fidelity == Fidelity::kHybrid || housing_only;
   mesh_ = hybrid ? MeshBearingHousing(scene_) : MeshBearing(scene_);
   mesh_quality_ = MeasureMeshQuality(mesh_.mesh);
   const fe::Mesh& mesh = mesh_.mesh;
@@ -83,7 +83,8 @@ FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& op
   solver_->FixNodes(NodeSet(mesh, "adapter.bottom"), true, true);
   // Rigid adapter (scene model.adapter = "rigid"): all its nodes fixed, and the outer ring's
   // nodes tied to the seat (below) with them.
-  if (scene_.model.adapter == "rigid") solver_->FixNodes(NodeSet(mesh, "adapter.all"), true, true);
+  if (scene_.model.adapter == AdapterModel::kRigid)
+    solver_->FixNodes(NodeSet(mesh, "adapter.all"), true, true);
 
   // Shaft: inner-ring bore as a rigid body, rotation prescribed, translation free, load down.
   const double omega = scene_.operation.inner_ring_speed_rad_s;
@@ -126,7 +127,8 @@ FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& op
       return std::make_unique<contact::ContactPair>(
           contact::MakeContactPair(mesh, surf, master, bulk, t, o));
     };
-    if (scene_.model.race_contact == "curved" || scene_.model.race_contact == "smooth") {
+    if (scene_.model.race_contact == RaceContact::kCurved ||
+        scene_.model.race_contact == RaceContact::kSmooth) {
       // Rim segments on the roller's circle and the raceways' segments become arcs; the spall's
       // walls and bottom stay straight, so its corners touch as vertices.
       const double cx = mesh_.pitch_radius_m * std::cos(mesh_.roller_angles_rad[j]);
@@ -136,10 +138,11 @@ FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& op
         contact::ContactSurface s = contact::MakeSurface(mesh, surf, bulk, t);
         contact::ContactSurface m = contact::MakeSurface(mesh, master, bulk, t);
         contact::MarkCircularArcs(
-            &s, mesh.x.data(), mesh.y.data(), cx, cy, mesh_.roller_radius_m, tol);
-        contact::MarkCircularArcs(&m, mesh.x.data(), mesh.y.data(), 0, 0, race_radius, tol);
+            &s, mesh.x.data(), mesh.y.data(), {cx, cy, mesh_.roller_radius_m}, tol);
+        contact::MarkCircularArcs(&m, mesh.x.data(), mesh.y.data(), {0, 0, race_radius}, tol);
         contact::ContactPairOptions o = race;
-        o.smooth_surfaces = scene_.model.race_contact == "smooth" && !KeepsArcsOnItsSpall(j);
+        o.smooth_surfaces =
+            scene_.model.race_contact == RaceContact::kSmooth && !KeepsArcsOnItsSpall(j);
         return std::make_unique<contact::ContactPair>(
             surf + "/" + master, std::move(s), std::move(m), o);
       };
@@ -198,7 +201,7 @@ FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& op
       }
       pairs.emplace_back(best, a);
     }
-    if (scene_.model.adapter == "rigid") {
+    if (scene_.model.adapter == AdapterModel::kRigid) {
       std::vector<int> ring_seat;
       for (const auto& p : pairs) ring_seat.push_back(p.first);
       solver_->FixNodes(ring_seat, true, true);
@@ -305,8 +308,9 @@ std::vector<std::string> FeBearingModel::Warnings() const {
   }
   if (facets == 0) return out;
   const double rim_spacing = 2.0 * std::numbers::pi * mesh_.roller_radius_m / facets;
-  if (scene_.model.race_contact == "smooth") return out;  // no blend to kink (spline_surface.h)
-  if (scene_.model.race_contact != "faceted") {
+  if (scene_.model.race_contact == RaceContact::kSmooth)
+    return out;  // no blend to kink (spline_surface.h)
+  if (scene_.model.race_contact != RaceContact::kFaceted) {
     // The curved race contact rolls the meshed rims as circles (measured at mu 0.01 on 0.5 and
     // 1.0 mm meshes), but on finer rims dented loaded nodes kink the fixed-curvature arcs and the
     // blend creates energy (docs/CONTACT.md, "Limits").
@@ -361,9 +365,9 @@ std::string FeBearingModel::Describe() const {
        << outer_pairs_.size() + inner_pairs_.size() + cage_pairs_.size()
        << " contact pairs (penalty f = " << options_.race_penalty_scale << " races, "
        << options_.cage_penalty_scale << " cage, damping " << options_.contact_damping_ratio
-       << "; race contact " << scene_.model.race_contact;
+       << "; race contact " << RaceContactName(scene_.model.race_contact);
     for (int j = 0; j < num_rollers(); ++j)
-      if (scene_.model.race_contact == "smooth" && KeepsArcsOnItsSpall(j))
+      if (scene_.model.race_contact == RaceContact::kSmooth && KeepsArcsOnItsSpall(j))
         os << ", roller " << j << " arcs (spalled)";
     os << "); cage rigid (" << cage_->nodes().size() << " nodes, roller-guided: radial play +-"
        << options_.cage_guide.radial_play_m * 1e3 << " mm); ring-adapter tie " << tie_->num_pairs()

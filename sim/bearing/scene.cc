@@ -55,6 +55,39 @@ struct Range {
 const Range kPositive{0.0, HUGE_VAL, true, false};
 const Range kNonNegative{0.0, HUGE_VAL, false, false};
 
+// The scene-file names of the [model] choices, in the order error messages list them.
+template <typename E>
+struct NamedValue {
+  E value;
+  const char* name;
+};
+constexpr NamedValue<Fidelity> kFidelityNames[] = {{Fidelity::kFe, "fe"},
+                                                   {Fidelity::kHybrid, "hybrid"},
+                                                   {Fidelity::kLumped, "lumped"},
+                                                   {Fidelity::kAuto, "auto"}};
+constexpr NamedValue<AdapterModel> kAdapterModelNames[] = {{AdapterModel::kElastic, "elastic"},
+                                                           {AdapterModel::kRigid, "rigid"}};
+constexpr NamedValue<RaceContact> kRaceContactNames[] = {{RaceContact::kFaceted, "faceted"},
+                                                         {RaceContact::kCurved, "curved"},
+                                                         {RaceContact::kSmooth, "smooth"}};
+
+template <typename E, std::size_t N>
+const char* NameOf(const NamedValue<E> (&table)[N], E value) {
+  for (const auto& e : table)
+    if (e.value == value) return e.name;
+  return "?";
+}
+
+template <typename E, std::size_t N>
+bool ParseName(const NamedValue<E> (&table)[N], const std::string& name, E* value) {
+  for (const auto& e : table)
+    if (name == e.name) {
+      *value = e.value;
+      return true;
+    }
+  return false;
+}
+
 // One TOML table being read: remembers which keys were used, fills in defaults (so the table
 // becomes the effective scene), and reports unknown keys.
 class Section {
@@ -361,6 +394,11 @@ void ReadFriction(Section s, SceneFriction* f) {
   f->mu_static = s.Number("mu_static", 0.01, {0.0, 2.0});
   f->mu_dynamic = s.Number("mu_dynamic", 0.005, {0.0, 2.0});
   f->decay_s_m = s.Number("decay_s_m", 0.0, kNonNegative);
+  const std::string model = s.String("model", "coulomb");
+  if (!contact::ParseTractionModel(model, &f->model))
+    s.Fail("model", "expected \"coulomb\" or \"ehl\" (got \"" + model + "\")");
+  f->ehl.limiting_coefficient = s.Number("ehl_limit", 0.08, {0.0, 1.0, true, true});
+  f->ehl.slide_roll_scale = s.Number("ehl_slide_roll", 0.01, {0.0, 1.0, true, false});
   s.RejectUnknown();
   if (f->mu_dynamic > f->mu_static) s.Fail("mu_dynamic", "must not exceed mu_static");
 }
@@ -371,33 +409,43 @@ void ReadDamping(Section s, SceneDamping* d) {
   s.RejectUnknown();
 }
 
-// A string key that must be one of `choices`.
-std::string Choice(Section& s,
-                   const std::string& key,
-                   const std::string& def,
-                   const std::vector<std::string>& choices) {
-  const std::string v = s.String(key, def);
-  if (std::find(choices.begin(), choices.end(), v) != choices.end()) return v;
+// A string key that must name one of `table`'s values.
+template <typename E, std::size_t N>
+E Choice(Section& s, const std::string& key, E def, const NamedValue<E> (&table)[N]) {
+  const std::string v = s.String(key, NameOf(table, def));
+  E out;
+  if (ParseName(table, v, &out)) return out;
   std::string list;
-  for (std::size_t i = 0; i < choices.size(); ++i)
-    list += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + ("\"" + choices[i] + "\"");
+  for (std::size_t i = 0; i < N; ++i) {
+    if (i > 0) list += i + 1 == N ? " or " : ", ";
+    list += '"';
+    list += table[i].name;
+    list += '"';
+  }
   s.Fail(key, "expected " + list + ", got \"" + v + "\"");
 }
 
 void ReadModel(Section s,
                const SceneGeometry& g,
                const std::vector<Defect>& defects,
+               const SceneFriction& friction,
                SceneModel* model) {
-  model->fidelity = Choice(s, "fidelity", "fe", {"fe", "hybrid", "lumped", "auto"});
-  model->adapter = Choice(s, "adapter", "elastic", {"elastic", "rigid"});
-  model->race_contact = Choice(s, "race_contact", "smooth", {"faceted", "curved", "smooth"});
+  model->fidelity = Choice(s, "fidelity", Fidelity::kFe, kFidelityNames);
+  model->adapter = Choice(s, "adapter", AdapterModel::kElastic, kAdapterModelNames);
+  model->race_contact = Choice(s, "race_contact", RaceContact::kSmooth, kRaceContactNames);
   // The FE section is 2-D: a spall runs through its whole thickness.
-  for (std::size_t i = 0; model->fidelity == "fe" && i < defects.size(); ++i)
+  for (std::size_t i = 0; model->fidelity == Fidelity::kFe && i < defects.size(); ++i)
     if (defects[i].length_m < g.thickness_m * (1 - 1e-12))
       s.Fail("fidelity",
              "defects." + std::to_string(i) +
                  ".length_mm is shorter than bearing.thickness_mm (a partial-length spall); "
                  "that needs model.fidelity = \"hybrid\"");
+  // The lubricant traction needs the contact's entrainment speed, which the rigid rollers have
+  // and the FE's node-to-surface contact does not.
+  if (model->fidelity == Fidelity::kFe && friction.model != contact::TractionModel::kCoulomb)
+    s.Fail("fidelity",
+           "friction.model = \"ehl\" needs model.fidelity = \"hybrid\" or \"lumped\" (the "
+           "full FE has Coulomb friction only)");
   s.RejectUnknown();
 }
 
@@ -413,7 +461,7 @@ void ReadMesh(Section s,
       kMm;
   s.RejectUnknown();
   // The hybrid model's rollers are not meshed: their spalls are exact profiles.
-  for (std::size_t i = 0; model.fidelity == "fe" && i < defects.size(); ++i) {
+  for (std::size_t i = 0; model.fidelity == Fidelity::kFe && i < defects.size(); ++i) {
     const auto& d = defects[i];
     if (d.width_m < 1.5 * mesh->contact_size_m || d.depth_m < mesh->contact_size_m)
       s.Fail("contact_size_mm",
@@ -483,8 +531,32 @@ void ReadSolver(Section s, SceneSolver* solver) {
 
 }  // namespace
 
+const char* FidelityName(Fidelity fidelity) { return NameOf(kFidelityNames, fidelity); }
+bool ParseFidelity(const std::string& name, Fidelity* fidelity) {
+  return ParseName(kFidelityNames, name, fidelity);
+}
+const char* AdapterModelName(AdapterModel adapter) { return NameOf(kAdapterModelNames, adapter); }
+bool ParseAdapterModel(const std::string& name, AdapterModel* adapter) {
+  return ParseName(kAdapterModelNames, name, adapter);
+}
+const char* RaceContactName(RaceContact race_contact) {
+  return NameOf(kRaceContactNames, race_contact);
+}
+bool ParseRaceContact(const std::string& name, RaceContact* race_contact) {
+  return ParseName(kRaceContactNames, name, race_contact);
+}
+
 std::vector<std::string> KnownOutputs() {
   return {"contact_forces", "acceleration", "cage", "rollers", "energy", "field"};
+}
+
+toml::table ParseToml(const std::string& toml_text, const std::string& source_name) {
+  try {
+    return toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw InputError(source_name + ":" + std::to_string(e.source().begin.line) + ": " +
+                     std::string(e.description()));
+  }
 }
 
 void ApplyOverride(toml::table& table, const std::string& assignment) {
@@ -577,13 +649,7 @@ void ApplyOverride(toml::table& table, const std::string& assignment) {
 Scene ParseScene(const std::string& toml_text,
                  const std::string& source_name,
                  const std::vector<std::string>& overrides) {
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, source_name);
-  } catch (const toml::parse_error& e) {
-    throw InputError(source_name + ":" + std::to_string(e.source().begin.line) + ": " +
-                     std::string(e.description()));
-  }
+  toml::table root = ParseToml(toml_text, source_name);
   for (const auto& o : overrides) ApplyOverride(root, o);
 
   Scene scene;
@@ -596,7 +662,7 @@ Scene ParseScene(const std::string& toml_text,
   ReadOperation(top.Table("operation"), &scene.operation);
   ReadFriction(top.Table("friction"), &scene.friction);
   ReadDamping(top.Table("damping"), &scene.damping);
-  ReadModel(top.Table("model"), scene.geometry, scene.defects, &scene.model);
+  ReadModel(top.Table("model"), scene.geometry, scene.defects, scene.friction, &scene.model);
   ReadMesh(top.Table("mesh"), scene.model, scene.defects, &scene.mesh);
   ReadSensors(top, scene.geometry, &scene.sensors);
   ReadRun(top.Table("run"), &scene.run, &scene.outputs);

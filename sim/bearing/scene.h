@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/bearing.h"
+#include "sim/contact/traction.h"
 
 namespace spallkit::sim {
 
@@ -82,6 +83,10 @@ struct SceneFriction {
   double mu_static = 0.01;
   double mu_dynamic = 0.005;
   double decay_s_m = 0.0;  // mu = mu_d + (mu_s - mu_d) exp(-decay |v_rel|) (LS-DYNA DC)
+  // Roller-race contacts of the rigid-roller models (hybrid, lumped): Coulomb with the mu above,
+  // or the lubricant traction curve (sim/contact/traction.h); the cage pockets keep Coulomb.
+  contact::TractionModel model = contact::TractionModel::kCoulomb;
+  contact::EhlTraction ehl;
 };
 
 struct SceneDamping {
@@ -101,7 +106,7 @@ struct Sensor {
   std::vector<std::string> directions;  // subset of {"x", "y"}
 };
 
-// The error a run may have against the finest model ([run.tolerance]; model.fidelity = "auto"
+// The error a run may have against the finest model ([run.tolerance]; Fidelity::kAuto
 // picks the cheapest rung whose measured error meets it, sim/bearing/fidelity_choice.h).
 struct SceneTolerance {
   double f_b = 0.01;          // relative error of the roller defect frequency
@@ -117,25 +122,39 @@ struct SceneRun {
 };
 
 // Which model `spall simulate` builds (docs/BEARING_MODEL.md):
-//  - "fe": every part meshed (level 4, the paper's model; sim/bearing/model_builder.h);
-//  - "hybrid": outer ring + adapter meshed, rollers / cage / inner ring rigid bodies with exact
+//  - kFe: every part meshed (level 4, the paper's model; sim/bearing/model_builder.h);
+//  - kHybrid: outer ring + adapter meshed, rollers / cage / inner ring rigid bodies with exact
 //    profiles and Palmgren contact (level 3, sim/bearing/hybrid_rollers.h). The mesh keys then
 //    apply to the outer ring and adapter only and need not resolve the spalls;
-//  - "lumped": the hybrid's rigid parts on a rigid outer ring with the housing's fitted
+//  - kLumped: the hybrid's rigid parts on a rigid outer ring with the housing's fitted
 //    stiffness (sim/bearing/lumped_model.h); no mesh is stepped;
-//  - "auto": the cheapest of these whose measured error meets [run.tolerance]
-//    (sim/bearing/fidelity_choice.h).
+//  - kAuto: the cheapest of these whose measured error meets [run.tolerance]
+//    (sim/bearing/fidelity_choice.h). A built model's fidelity is never kAuto.
+enum class Fidelity { kFe, kHybrid, kLumped, kAuto };
+// How the adapter under the outer ring is modelled. kElastic: FE (steel, scene
+// materials.adapter); kRigid: every adapter node fixed, so the outer ring is held rigidly over the
+// seat (Table 1 gives the adapter no material; docs/BEARING_MODEL.md, "Limits").
+enum class AdapterModel { kElastic, kRigid };
+// Roller-race contact of the full FE (kFe only): kSmooth (roller rims and raceways as cubic
+// B-splines through their nodes, docs/CONTACT.md "Smooth surfaces": C2 contact forces, energy
+// balanced on the 0.25 mm mesh), kCurved (circular arcs, "Curved surfaces": no facet bump as a
+// roller turns; creates energy on rims finer than 0.35 mm) or kFaceted (node to chord).
+enum class RaceContact { kFaceted, kCurved, kSmooth };
+
+// Scene-file names ("fe", "hybrid", "lumped", "auto"; "elastic", "rigid"; "faceted", "curved",
+// "smooth"), and back: the Parse functions return false for any other name.
+const char* FidelityName(Fidelity fidelity);
+bool ParseFidelity(const std::string& name, Fidelity* fidelity);
+const char* AdapterModelName(AdapterModel adapter);
+bool ParseAdapterModel(const std::string& name, AdapterModel* adapter);
+const char* RaceContactName(RaceContact race_contact);
+bool ParseRaceContact(const std::string& name, RaceContact* race_contact);
+
+// [model]: keys fidelity, adapter, race_contact.
 struct SceneModel {
-  std::string fidelity = "fe";
-  // "elastic": the adapter is FE (steel, scene materials.adapter); "rigid": every adapter node
-  // fixed, so the outer ring is held rigidly over the seat (Table 1 gives the adapter no
-  // material; docs/BEARING_MODEL.md, "Limits").
-  std::string adapter = "elastic";
-  // Roller-race contact of the full FE ("fe" only): "smooth" (roller rims and raceways as cubic
-  // B-splines through their nodes, docs/CONTACT.md "Smooth surfaces": C2 contact forces, energy
-  // balanced on the 0.25 mm mesh), "curved" (circular arcs, "Curved surfaces": no facet bump as a
-  // roller turns; creates energy on rims finer than 0.35 mm) or "faceted" (node to chord).
-  std::string race_contact = "smooth";
+  Fidelity fidelity = Fidelity::kFe;
+  AdapterModel adapter = AdapterModel::kElastic;
+  RaceContact race_contact = RaceContact::kSmooth;
 };
 
 struct SceneSolver {
@@ -171,6 +190,10 @@ Scene LoadScene(const std::string& path, const std::vector<std::string>& overrid
 Scene ParseScene(const std::string& toml_text,
                  const std::string& source_name,
                  const std::vector<std::string>& overrides = {});
+
+// Parses TOML text (a scene, a sweep file); a syntax error throws InputError
+// "<source_name>:<line>: <what toml++ says>".
+toml::table ParseToml(const std::string& toml_text, const std::string& source_name);
 
 // Sets one key from "a.b.c=value" (array elements by index: "defects.0.width_mm=2.27"; index ==
 // size appends a table). The value is parsed as a TOML value; a bare word that is not valid TOML

@@ -60,7 +60,7 @@ double EstimatedElements(const Scene& scene) {
     return 0.25 * kPi * (d_out * d_out - d_in * d_in);
   };
   double area = annulus(g.bearing.outer_raceway_diameter_m, g.outer_ring_outer_diameter_m);
-  if (scene.model.fidelity == "fe") {
+  if (scene.model.fidelity == Fidelity::kFe) {
     const double r = 0.5 * g.bearing.element_diameter_m;
     area += annulus(g.inner_ring_bore_diameter_m, g.bearing.inner_raceway_diameter_m);
     area += g.bearing.num_elements * kPi * r * r;
@@ -79,7 +79,7 @@ double ResolvedRateHz(const Scene& scene) {
   };
   const SceneMaterials& mat = scene.materials;
   double c = std::min(bar_speed(mat.outer_ring), bar_speed(mat.adapter));
-  if (scene.model.fidelity == "fe")
+  if (scene.model.fidelity == Fidelity::kFe)
     c = std::min({c, bar_speed(mat.inner_ring), bar_speed(mat.roller), bar_speed(mat.cage)});
   return c / std::max(scene.mesh.size_m, scene.mesh.adapter_size_m);
 }

@@ -111,10 +111,9 @@ ContactSurface MakeSurface(const fe::Mesh& mesh,
 int MarkCircularArcs(ContactSurface* surface,
                      const double* x,
                      const double* y,
-                     double cx,
-                     double cy,
-                     double radius,
+                     const Circle& circle,
                      double tolerance) {
+  const double cx = circle.cx, cy = circle.cy, radius = circle.radius;
   surface->segment_curvature.resize(surface->num_segments(), 0.0);
   int arcs = 0;
   for (int k = 0; k < surface->num_segments(); ++k) {

@@ -54,16 +54,19 @@ ContactSurface MakeSurface(const fe::Mesh& mesh,
                            const std::vector<double>& bulk_modulus,
                            double thickness);
 
-// Marks the segments of `surface` whose two nodes lie on the circle (cx, cy, radius) within
-// `tolerance` (m, reference positions x, y) as arcs of that circle: curvature +1/radius where the
-// centre is on the body side (convex), -1/radius where it is outside (concave). Other segments
-// stay straight. Returns the number of arcs.
+// A circle in the section plane (m).
+struct Circle {
+  double cx = 0, cy = 0, radius = 0;
+};
+
+// Marks the segments of `surface` whose two nodes lie on `circle` within `tolerance` (m,
+// reference positions x, y) as arcs of that circle: curvature +1/radius where the centre is on
+// the body side (convex), -1/radius where it is outside (concave). Other segments stay straight.
+// Returns the number of arcs.
 int MarkCircularArcs(ContactSurface* surface,
                      const double* x,
                      const double* y,
-                     double cx,
-                     double cy,
-                     double radius,
+                     const Circle& circle,
                      double tolerance);
 
 }  // namespace spallkit::sim::contact

@@ -179,9 +179,9 @@ bool StressOptions::Validate(std::string* error) const {
     return false;
   };
   if (scenes < 1 || scenes > 100000) return fail("stress: scenes must be in [1, 100000]");
-  if (fidelity != "hybrid" && fidelity != "fe" && fidelity != "lumped")
-    return fail("stress: fidelity must be \"hybrid\", \"lumped\" or \"fe\" (got \"" + fidelity +
-                "\")");
+  if (fidelity == Fidelity::kAuto)
+    return fail(std::string("stress: fidelity must be \"hybrid\", \"lumped\" or \"fe\" (got \"") +
+                FidelityName(fidelity) + "\")");
   if (!(max_duration_s >= 1e-3 && max_duration_s <= 1.0))
     return fail("stress: max duration must be in [0.001, 1] s");
   if (!(min_mesh_size_mm >= 0.25 && min_mesh_size_mm <= max_mesh_size_mm &&
@@ -198,7 +198,7 @@ StressCase DrawScene(const StressOptions& o, int index) {
   Draw d(o.seed, index);
   StressCase c;
   c.index = index;
-  Set(&c, "model.fidelity", "\"" + o.fidelity + "\"");
+  Set(&c, "model.fidelity", std::string("\"") + FidelityName(o.fidelity) + "\"");
   Set(&c, "solver.threads", "1");
   // Speed: a standing shaft one time in ten, a sudden start (no ramp) one time in seven.
   Set(&c, "operation.speed_rpm", d.Chance(0.1) ? "0.0" : Num(d.Uniform(0.0, 20000.0)));

@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/bearing/scene.h"
+
 namespace spallkit::sim::stress {
 
 enum class StressOutcome { kRejected, kPassed, kFailed };
@@ -45,7 +47,7 @@ struct StressCase {
 struct StressOptions {
   int scenes = 200;
   std::uint64_t seed = 1;
-  std::string fidelity = "hybrid";  // model.fidelity of every scene: hybrid, lumped or fe
+  sim::Fidelity fidelity = sim::Fidelity::kHybrid;  // of every scene: hybrid, lumped or fe
   // Upper bound of the simulated time per scene, s (the fixed-seed test subset uses a short one).
   double max_duration_s = 0.02;
   double min_mesh_size_mm = 1.0;  // housing mesh size drawn (hybrid), log-uniform [min, max]

@@ -7,6 +7,35 @@ function(run step)
   set(output "${out}" PARENT_SCOPE)
 endfunction()
 
+# EXPECT_SHARED: SPALLKIT_BUILD_DIR must be a BUILD_SHARED_LIBS=ON tree that is already built;
+# otherwise the test says why it is skipped (ctest's SKIP_REGULAR_EXPRESSION) and stops.
+if(EXPECT_SHARED)
+  set(cache ${SPALLKIT_BUILD_DIR}/CMakeCache.txt)
+  if(NOT EXISTS ${cache})
+    message("package test skipped: no shared-library build at ${SPALLKIT_BUILD_DIR}")
+    return()
+  endif()
+  file(STRINGS ${cache} shared REGEX "^BUILD_SHARED_LIBS:BOOL=")
+  file(STRINGS ${cache} shared_generator REGEX "^CMAKE_GENERATOR:INTERNAL=")
+  if(NOT shared MATCHES "=(ON|TRUE|1)$")
+    message("package test skipped: ${SPALLKIT_BUILD_DIR} is not a BUILD_SHARED_LIBS=ON build")
+    return()
+  endif()
+  if(NOT shared_generator MATCHES "=Ninja$")
+    message("package test skipped: ${SPALLKIT_BUILD_DIR} is not a Ninja build (cannot tell it is "
+            "up to date without building it)")
+    return()
+  endif()
+  # A dry run: an out-of-date tree would install stale libraries next to the current headers.
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${SPALLKIT_BUILD_DIR} -- -n
+                  OUTPUT_VARIABLE dry ERROR_VARIABLE dry RESULT_VARIABLE code)
+  string(REGEX REPLACE "[^\n]*Re-checking globbed directories[^\n]*\n" "" dry "${dry}")
+  if(NOT code EQUAL 0 OR dry MATCHES "\\[[0-9]+/[0-9]+\\]")
+    message("package test skipped: ${SPALLKIT_BUILD_DIR} is out of date (build it first)")
+    return()
+  endif()
+endif()
+
 set(prefix ${WORK_DIR}/prefix)
 set(build ${WORK_DIR}/build)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -25,6 +54,15 @@ set(configure_args -S ${CONSUMER_SOURCE_DIR} -B ${build} -G ${GENERATOR}
 if(CXX_COMPILER_LAUNCHER)
   list(APPEND configure_args -DCMAKE_CXX_COMPILER_LAUNCHER=${CXX_COMPILER_LAUNCHER})
 endif()
+if(EXPECT_SHARED AND NOT EXISTS ${prefix}/lib/libspallkit_sim.so)
+  message(FATAL_ERROR "not installed: ${prefix}/lib/libspallkit_sim.so")
+endif()
+# The installed program runs from the prefix (with shared libraries: found through its RPATH).
+run("installed spall" ${prefix}/bin/spall --version)
+if(NOT output MATCHES "spallkit [0-9.]+")
+  message(FATAL_ERROR "unexpected spall --version output: ${output}")
+endif()
+
 run("configure" ${CMAKE_COMMAND} ${configure_args})
 run("build" ${CMAKE_COMMAND} --build ${build})
 run("run" ${build}/spallkit_consumer)

@@ -87,7 +87,7 @@ TEST(Stress, InvalidOptionsAreRefused) {
   EXPECT_FALSE(o.Validate(&why));
   EXPECT_NE(why.find("scenes"), std::string::npos);
   o = StressOptions();
-  o.fidelity = "nonsense";
+  o.fidelity = Fidelity::kAuto;
   EXPECT_FALSE(o.Validate(&why));
 }
 

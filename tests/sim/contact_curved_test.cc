@@ -74,8 +74,9 @@ TEST(CurvedContactTest, ContactThroughARimNodeIsStillOneArcContact) {
   state.mass.assign(n + m, 1e-4);
   ContactSurface roller = MakeSurfaceFromChain("roller", rn, true);
   ContactSurface bore_surface = MakeSurfaceFromChain("bore", bn, true);
-  ASSERT_EQ(MarkCircularArcs(&roller, state.x.data(), state.y.data(), 0, cy, r, 1e-12), n);
-  ASSERT_EQ(MarkCircularArcs(&bore_surface, state.x.data(), state.y.data(), 0, 0, bore, 1e-12), m);
+  ASSERT_EQ(MarkCircularArcs(&roller, state.x.data(), state.y.data(), {0, cy, r}, 1e-12), n);
+  ASSERT_EQ(MarkCircularArcs(&bore_surface, state.x.data(), state.y.data(), {0, 0, bore}, 1e-12),
+            m);
   ContactPair pair("roller/bore", roller, bore_surface, ConstantPenalty());
   pair.AddForces(state, 0.0, 1e-9);
   EXPECT_EQ(pair.Resultant().active_nodes, 1);
@@ -183,8 +184,8 @@ FinePath RollAFineDentedRim(int steps, double rim_dent) {
   st.mass.assign(nr + nb, 1e-5);
   ContactSurface roller = MakeSurfaceFromChain("roller", rn, true);
   ContactSurface bore = MakeSurfaceFromChain("bore", bn, true);
-  EXPECT_EQ(MarkCircularArcs(&roller, x0.data(), y0.data(), 0, 0, kR, 1e-12), nr);
-  EXPECT_EQ(MarkCircularArcs(&bore, x0.data(), y0.data(), 0, 0, kBore, 1e-12), nb);
+  EXPECT_EQ(MarkCircularArcs(&roller, x0.data(), y0.data(), {0, 0, kR}, 1e-12), nr);
+  EXPECT_EQ(MarkCircularArcs(&bore, x0.data(), y0.data(), {0, 0, kBore}, 1e-12), nb);
   ContactPair pair("roller/bore", roller, bore, ConstantPenalty());
   FinePath r;
   std::vector<double> fx_prev, fy_prev, x_prev, y_prev;

@@ -55,9 +55,9 @@ inline Scene MakeScene(bool curved, double notch = 0.0) {
       x[i] = RimRadius(i, notch) * std::cos(2 * kPi * i / kRim);
       y[i] = RimRadius(i, notch) * std::sin(2 * kPi * i / kRim);
     }
-    EXPECT_EQ(MarkCircularArcs(&s.roller, x.data(), y.data(), 0, 0, kR, 1e-12),
+    EXPECT_EQ(MarkCircularArcs(&s.roller, x.data(), y.data(), {0, 0, kR}, 1e-12),
               notch > 0 ? kRim - 4 : kRim);
-    EXPECT_EQ(MarkCircularArcs(&s.bore, s.state.x.data(), s.state.y.data(), 0, 0, kBore, 1e-12),
+    EXPECT_EQ(MarkCircularArcs(&s.bore, s.state.x.data(), s.state.y.data(), {0, 0, kBore}, 1e-12),
               kRace);
     EXPECT_GT(s.roller.segment_curvature[2], 0);  // convex
     EXPECT_LT(s.bore.segment_curvature[0], 0);    // concave

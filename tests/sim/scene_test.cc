@@ -98,10 +98,10 @@ TEST(Scene, PaperCasesHaveThePaperParameters) {
   // The high-speed sweeps run the hybrid model (full-FE rollers lock on their rim facets at the
   // paper's friction below 0.25 mm, and 0.25 mm costs ~40 s per simulated ms); the
   // 1200 rpm verification scene keeps the paper's full FE.
-  EXPECT_EQ(w.model.fidelity, "hybrid");
-  EXPECT_EQ(d.model.fidelity, "hybrid");
-  EXPECT_EQ(r.model.fidelity, "hybrid");
-  EXPECT_EQ(LoadScene(dir + "paper-verification.toml").model.fidelity, "fe");
+  EXPECT_EQ(w.model.fidelity, Fidelity::kHybrid);
+  EXPECT_EQ(d.model.fidelity, Fidelity::kHybrid);
+  EXPECT_EQ(r.model.fidelity, Fidelity::kHybrid);
+  EXPECT_EQ(LoadScene(dir + "paper-verification.toml").model.fidelity, Fidelity::kFe);
 }
 
 TEST(Scene, OverridesSetAnyKeyWithTypeChecking) {
@@ -205,14 +205,54 @@ TEST(Scene, LoadRampDefaultsToTheSpeedRamp) {
 }
 
 TEST(Scene, RaceContactIsFacetedCurvedOrSmooth) {
-  EXPECT_EQ(ParseScene("", "default.toml").model.race_contact, "smooth");
+  EXPECT_EQ(ParseScene("", "default.toml").model.race_contact, RaceContact::kSmooth);
   EXPECT_EQ(ParseScene("[model]\nrace_contact = \"faceted\"\n", "f.toml").model.race_contact,
-            "faceted");
+            RaceContact::kFaceted);
   ExpectOneLineError(ErrorOf("[model]\nrace_contact = \"round\"\n"),
                      "model.race_contact: expected \"faceted\", \"curved\" or \"smooth\", got "
                      "\"round\"");
-  EXPECT_EQ(ParseScene("[model]\nrace_contact = \"smooth\"\n", "s.toml").model.race_contact,
-            "smooth");
+  EXPECT_EQ(ParseScene("[model]\nrace_contact = \"curved\"\n", "c.toml").model.race_contact,
+            RaceContact::kCurved);
+}
+
+// The [model] choices are enums; their names are the scene file's words, and the effective
+// scene keeps the words (a re-run reads them back to the same enums).
+TEST(Scene, ModelChoicesAreEnumsNamedAsInTheSceneFile) {
+  const Scene s = ParseScene(
+      "[model]\nfidelity = \"auto\"\nadapter = \"rigid\"\nrace_contact = \"faceted\"\n", "m.toml");
+  EXPECT_EQ(s.model.fidelity, Fidelity::kAuto);
+  EXPECT_EQ(s.model.adapter, AdapterModel::kRigid);
+  EXPECT_EQ(s.model.race_contact, RaceContact::kFaceted);
+  const Scene again = ParseScene(s.effective_toml, "effective.toml");
+  EXPECT_EQ(again.model.fidelity, Fidelity::kAuto);
+  EXPECT_EQ(again.model.adapter, AdapterModel::kRigid);
+  EXPECT_EQ(again.model.race_contact, RaceContact::kFaceted);
+  EXPECT_EQ(ParseScene("", "d.toml").model.adapter, AdapterModel::kElastic);
+  EXPECT_EQ(ParseScene("", "d.toml").model.fidelity, Fidelity::kFe);
+
+  for (Fidelity f : {Fidelity::kFe, Fidelity::kHybrid, Fidelity::kLumped, Fidelity::kAuto}) {
+    Fidelity back = Fidelity::kFe;
+    EXPECT_TRUE(ParseFidelity(FidelityName(f), &back)) << FidelityName(f);
+    EXPECT_EQ(back, f);
+  }
+  for (AdapterModel a : {AdapterModel::kElastic, AdapterModel::kRigid}) {
+    AdapterModel back = AdapterModel::kElastic;
+    EXPECT_TRUE(ParseAdapterModel(AdapterModelName(a), &back));
+    EXPECT_EQ(back, a);
+  }
+  for (RaceContact r : {RaceContact::kFaceted, RaceContact::kCurved, RaceContact::kSmooth}) {
+    RaceContact back = RaceContact::kSmooth;
+    EXPECT_TRUE(ParseRaceContact(RaceContactName(r), &back));
+    EXPECT_EQ(back, r);
+  }
+  Fidelity f = Fidelity::kFe;
+  EXPECT_FALSE(ParseFidelity("FE", &f));
+  EXPECT_EQ(f, Fidelity::kFe);
+  ExpectOneLineError(ErrorOf("[model]\nfidelity = \"full\"\n"),
+                     "model.fidelity: expected \"fe\", \"hybrid\", \"lumped\" or \"auto\", got "
+                     "\"full\"");
+  ExpectOneLineError(ErrorOf("[model]\nadapter = \"soft\"\n"),
+                     "model.adapter: expected \"elastic\" or \"rigid\", got \"soft\"");
 }
 
 TEST(Scene, MissingFileIsInputError) {

@@ -71,7 +71,7 @@ TEST(SweepTest, CaseSceneAppliesOverridesAndFixesOneSolverThread) {
   const Sweep s = Parse(kGridSweep);
   const SweepCase c = MakeCase(s, 5);
   const sim::Scene scene = CaseScene(s, c);
-  EXPECT_EQ(scene.model.fidelity, "hybrid");
+  EXPECT_EQ(scene.model.fidelity, sim::Fidelity::kHybrid);
   EXPECT_EQ(scene.solver.threads, 1);
   EXPECT_DOUBLE_EQ(scene.defects.at(0).width_m, 1.2e-3);
   EXPECT_NEAR(scene.operation.inner_ring_speed_rad_s, 1000.0 * 2 * M_PI / 60, 1e-9);

@@ -1,0 +1,133 @@
+// Fault lines that coincide with a shaft order or a mains harmonic: left out of the comb score,
+// but counted in the family rule when they stand out of their nuisance comb; and the line table
+// of a comb whose lines are all capped sits on the peaks, not on their leakage.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "dsp/detection.h"
+
+namespace spallkit::dsp {
+namespace {
+
+// The MFPT rig's bearing at 1488 rpm: BPFO = 3.245 f_r, so 2 x BPFO (6.49 f_r) lies 0.25 Hz
+// from the shaft half order 6.5 f_r and 4 x BPFO from 13 f_r, within the 2-bin guard at 1 Hz.
+constexpr double kShaftHz = 24.8;
+constexpr double kDf = 1.0;
+
+FaultFamily OuterRace() {
+  const auto f = ComputeFrequencies(CustomBearing(8, 5.969, 31.623, 0.0), kShaftHz);
+  return MakeFaultFamilies(f, {.harmonics = 5})[0];
+}
+
+std::vector<double> NoisePower(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::exponential_distribution<double> e(1.0);
+  std::vector<double> p(n);
+  for (auto& v : p) v = e(rng);
+  return p;
+}
+
+void AddLine(std::vector<double>* power, double hz, double level) {
+  (*power)[static_cast<int>(std::lround(hz / kDf))] += level;
+}
+
+DetectionContext Context() {
+  DetectionContext ctx;
+  ctx.shaft_hz = kShaftHz;
+  ctx.measured_shaft_scale = 1.0;
+  return ctx;
+}
+
+const LineEvidence& Harmonic(const FamilyDetection& d, int k) {
+  for (const auto& l : d.lines)
+    if (l.line.harmonic == k && !l.line.is_sideband()) return l;
+  throw std::logic_error("no harmonic");
+}
+
+TEST(DetectionNuisance, HarmonicOnAShaftHalfOrderCountsWhenItStandsOutOfTheShaftComb) {
+  const FaultFamily outer = OuterRace();
+  const double bpfo = outer.fundamental_hz;
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    auto power = NoisePower(2000, seed);
+    AddLine(&power, bpfo, 400.0);
+    AddLine(&power, 2 * bpfo, 200.0);
+    const auto s = NormalizeSpectrum(power, kDf);
+    const FamilyDetection d = DetectFamily(s, outer, Context());
+    const LineEvidence& h2 = Harmonic(d, 2);
+    EXPECT_TRUE(h2.excluded);
+    EXPECT_EQ(h2.exclusion, "shaft");
+    EXPECT_GT(h2.nuisance_z, 0.0);
+    EXPECT_TRUE(h2.significant) << "seed " << seed << ": z " << h2.z << " nuisance "
+                                << h2.nuisance_z;
+    EXPECT_EQ(d.significant_harmonics, 2);
+    EXPECT_TRUE(d.detected) << d.reason;
+    // The comb score does not use the excluded lines (2x and 4x on the half orders 13 and 26,
+    // 3x on 240 Hz, 5x near 400 Hz at some scales).
+    EXPECT_LE(d.lines_used, 2);
+  }
+}
+
+TEST(DetectionNuisance, HarmonicOnAShaftHalfOrderIsNotEvidenceWhenTheShaftCombIsAsStrong) {
+  const FaultFamily outer = OuterRace();
+  const double bpfo = outer.fundamental_hz;
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    auto power = NoisePower(2000, seed);
+    AddLine(&power, bpfo, 400.0);
+    AddLine(&power, 2 * bpfo, 200.0);
+    // Looseness: every half order carries a line as strong as the one on 2 x BPFO.
+    for (int m = 1; m * 0.5 * kShaftHz < 450.0; ++m)
+      if (std::abs(m * 0.5 * kShaftHz - 2 * bpfo) > 3.0) AddLine(&power, m * 0.5 * kShaftHz, 200.0);
+    const auto s = NormalizeSpectrum(power, kDf);
+    const FamilyDetection d = DetectFamily(s, outer, Context());
+    const LineEvidence& h2 = Harmonic(d, 2);
+    EXPECT_TRUE(h2.excluded);
+    EXPECT_FALSE(h2.significant) << "seed " << seed << ": z " << h2.z << " nuisance "
+                                 << h2.nuisance_z;
+    EXPECT_FALSE(d.detected) << d.reason;
+  }
+}
+
+TEST(DetectionNuisance, WithoutReferenceLinesTheCoincidentLineStaysOut) {
+  const FaultFamily outer = OuterRace();
+  auto power = NoisePower(2000, 7);
+  AddLine(&power, outer.fundamental_hz, 400.0);
+  AddLine(&power, 2 * outer.fundamental_hz, 200.0);
+  const auto s = NormalizeSpectrum(power, kDf);
+  DetectionOptions o;
+  o.min_nuisance_references = 1000;  // more shaft orders than the searched range holds
+  const FamilyDetection d = DetectFamily(s, outer, Context(), o);
+  EXPECT_EQ(Harmonic(d, 2).nuisance_z, 0.0);
+  EXPECT_FALSE(Harmonic(d, 2).significant);
+  EXPECT_FALSE(d.detected) << d.reason;
+}
+
+// Every line capped (max_line_score): many speed scales tie; the table must sit on the peaks
+// (the largest uncapped evidence), not on the strong leakage two bins beside them.
+TEST(DetectionNuisance, TiedCappedCombReportsThePeaksNotTheirLeakage) {
+  const auto f = ComputeFrequencies(CatalogBearing("6205"), 29.5);
+  const FaultFamily outer = MakeFaultFamilies(f, {.harmonics = 4})[0];
+  const double df = 0.2, rate = f.bpfo_hz * 1.004;
+  auto power = NoisePower(6000, 11);
+  for (int k = 1; k <= 4; ++k) {
+    const int peak = static_cast<int>(std::lround(k * rate / df));
+    power[peak] += 1e6;
+    power[peak - 2] += 2e4;  // leakage: capped as well
+  }
+  const auto s = NormalizeSpectrum(power, df);
+  DetectionContext ctx;
+  ctx.shaft_hz = 29.5;
+  ctx.exclude_shaft = false;
+  ctx.exclude_mains = false;
+  const FamilyDetection d = DetectFamily(s, outer, ctx);
+  ASSERT_TRUE(d.detected) << d.reason;
+  for (int k = 1; k <= 4; ++k) {
+    const LineEvidence& h = Harmonic(d, k);
+    EXPECT_GT(h.z, 1e5) << "harmonic " << k << " at " << h.freq_hz << " Hz";
+  }
+  EXPECT_NEAR(d.fundamental_hz / rate, 1.0, 5e-4);
+}
+
+}  // namespace
+}  // namespace spallkit::dsp
