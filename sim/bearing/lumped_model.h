@@ -138,6 +138,9 @@ class LumpedBearingModel : public BearingModel {
   long history_pos_ = 0;
   double sample_force_[2] = {0, 0}, sample_time_ = 0;
   std::vector<double> sensor_prev_, sensor_last_;
+  // The last step's second half (t^n to t^(n+1/2)) of the housing spring's and damper's work,
+  // left out of energies() (at t^n).
+  double spring_half_ = 0, damping_half_ = 0;
 };
 
 }  // namespace spallkit::sim
