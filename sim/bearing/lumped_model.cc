@@ -253,6 +253,7 @@ void LumpedBearingModel::Step() {
   double* u[2] = {&race_.x_, &race_.y_};
   double* v[2] = {&race_.vx_, &race_.vy_};
   const double f_rollers[2] = {race_.fx_, race_.fy_};
+  spring_half_ = damping_half_ = 0.0;
   for (int d = 0; d < 2; ++d) {
     const double spring = -fit_.stiffness[d] * *u[d];
     const double damper = -fit_.damping[d] * *v[d];
@@ -263,6 +264,8 @@ void LumpedBearingModel::Step() {
     const double v_mid = 0.5 * (v_old + *v[d]);
     spring_energy_ -= spring * v_mid * dt_avg;
     housing_damping_work_ -= damper * v_mid * dt_avg;
+    spring_half_ -= 0.5 * spring * *v[d] * dt_avg;
+    damping_half_ -= 0.5 * damper * *v[d] * dt_avg;
     *u[d] += dt * *v[d];
   }
   dt_prev_ = dt;
@@ -297,10 +300,10 @@ solver::Energies LumpedBearingModel::energies() const {
   e.kinetic = rollers_.CentredKineticEnergy();
   for (int d = 0; d < 2; ++d)
     e.kinetic += 0.5 * fit_.mass[d] * ring_v_old_[d] * (d == 0 ? race_.vx_ : race_.vy_);
-  e.internal = spring_energy_;
+  e.internal = spring_energy_ - spring_half_;
   e.contact = rollers_.ContactEnergy();
   e.friction = rollers_.FrictionWork();
-  e.damping = rollers_.DampingWork() + housing_damping_work_;
+  e.damping = rollers_.DampingWork() + housing_damping_work_ - damping_half_;
   e.external = e.external_loads = rollers_.ExternalWork();
   return e;
 }

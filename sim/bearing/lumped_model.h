@@ -107,6 +107,9 @@ class LumpedBearingModel : public BearingModel {
   double spring_energy_ = 0, housing_damping_work_ = 0;
   bool started_ = false;
   double ring_v_old_[2] = {0, 0};  // ring velocity at n-1/2 of the last step (energy at t^n)
+  // The last step's second half (t^n to t^(n+1/2)) of the housing spring's and damper's work,
+  // left out of energies() (at t^n).
+  double spring_half_ = 0, damping_half_ = 0;
 };
 
 }  // namespace spallkit::sim

@@ -521,9 +521,13 @@ void RollerContacts::Integrate(double t, double dt) {
   centred += centred_energy(shaft_old, shaft_, shaft_mass_, 0.0);
   kinetic_ = kinetic;
   centred_kinetic_ = centred;
-  // Load work over the half steps around t^n; drive torque = -(contact torque on the shaft).
-  external_work_ += load * dt_avg * 0.5 * (vy_old + shaft_.vy);
-  external_work_ += -shaft_torque_ * omega_s_ * dt_avg;
+  // Load work over the half steps around t^n; drive torque = -(contact torque on the shaft),
+  // at the spin the contacts' relative velocities use in both halves. The second halves are
+  // booked now and left out of ExternalWork() until the next step.
+  const double load_half = 0.5 * dt_avg * load * shaft_.vy;
+  const double drive_half = -0.5 * dt_avg * shaft_torque_ * omega_s_;
+  external_work_ += 0.5 * dt_avg * load * vy_old + load_half + 2.0 * drive_half;
+  external_half_ = load_half + drive_half;
   dt_prev_ = dt;
 }
 
@@ -537,7 +541,14 @@ std::string RollerContacts::SaveState() const {
   put_body(shaft_);
   for (const auto* v : {&friction_, &outer_force_, &inner_force_, &cage_force_})
     for (double x : *v) out.Put(x);
-  for (double x : {dt_prev_, potential_, kinetic_, friction_work_, damping_work_, external_work_})
+  for (double x : {dt_prev_,
+                   potential_,
+                   kinetic_,
+                   friction_work_,
+                   damping_work_,
+                   external_work_,
+                   external_half_,
+                   centred_kinetic_})
     out.Put(x);
   out.PutVector(pending_);
   return out.Take();
@@ -545,7 +556,7 @@ std::string RollerContacts::SaveState() const {
 
 void RollerContacts::LoadState(const std::string& bytes) {
   const size_t z = rollers_.size();
-  const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 6;
+  const size_t n = 6 * (z + 2) + kFrictionSlots * z + 3 * z + 8;
   if (bytes.size() < n * sizeof(double))
     throw InputError("roller contacts: checkpoint state has the wrong size");
   CheckpointReader in(bytes, "roller contacts: checkpoint state");
@@ -557,8 +568,14 @@ void RollerContacts::LoadState(const std::string& bytes) {
   get_body(&shaft_);
   for (auto* v : {&friction_, &outer_force_, &inner_force_, &cage_force_})
     for (double& x : *v) x = in.Get<double>();
-  for (double* x :
-       {&dt_prev_, &potential_, &kinetic_, &friction_work_, &damping_work_, &external_work_})
+  for (double* x : {&dt_prev_,
+                    &potential_,
+                    &kinetic_,
+                    &friction_work_,
+                    &damping_work_,
+                    &external_work_,
+                    &external_half_,
+                    &centred_kinetic_})
     *x = in.Get<double>();
   pending_ = in.GetVector<DissipativeForce>();
   for (const DissipativeForce& d : pending_)
