@@ -233,7 +233,8 @@ class RollerContacts {
          cage_torque_ = 0;
   std::vector<double> fx_, fy_, torque_;  // per roller
   double cage_cos_ = 1, cage_sin_ = 0;    // of the cage's angle at x^n
-  // Per roller at x^n: cos and sin of its angle, circle centre.
+  // Per roller at x^n: cos and sin of its angle (advanced with it in Integrate and
+  // checkpointed: not recomputed from the angle), circle centre.
   std::vector<double> cos_, sin_, centre_x_, centre_y_;
 };
 
