@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include "dsp/envelope.h"
+#include "dsp/fft.h"
 #include "dsp/kurtogram.h"
 #include "dsp/prewhiten.h"
 #include "dsp/record_check.h"
@@ -125,6 +126,28 @@ void BM_CheckRecord(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(CheckRecord(x).robust_sigma);
 }
 BENCHMARK(BM_CheckRecord)->Unit(benchmark::kMillisecond);
+
+// One single-precision transform of a kurtogram size (7,680 x 2^k: the deepest binary row's m at
+// 10 s, 48 kHz, L = 6, and its parents' halves) with FFTW_ESTIMATE plans (what the kurtogram uses)
+// and FFTW_MEASURE plans (made once, before the timing; making them takes seconds).
+void BM_FftFloat(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const auto rigor = state.range(1) ? PlanRigor::kMeasure : PlanRigor::kEstimate;
+  ComplexFftF fft(n, +1, rigor);
+  auto in = AllocateComplexF(n), out = AllocateComplexF(n);
+  for (int i = 0; i < n; ++i) in[i] = {static_cast<float>(i % 7), static_cast<float>(i % 5)};
+  for (auto _ : state) {
+    fft.Execute(in.get(), out.get());
+    benchmark::DoNotOptimize(out.get());
+  }
+}
+BENCHMARK(BM_FftFloat)
+    ->ArgNames({"n", "measure"})
+    ->Args({15360, 0})
+    ->Args({15360, 1})
+    ->Args({61440, 0})
+    ->Args({61440, 1})
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_CepstrumPrewhiten(benchmark::State& state) {
   const auto& x = Signal();

@@ -387,125 +387,185 @@ Verdict FirstDetectedVerdict(const std::vector<FamilyDetection>& ranked) {
   return Verdict::kHealthy;
 }
 
+// DiagnoseOptions::confirm_outer_race: the outer-race family is claimed only when its comb is
+// also significant on the cepstrum-pre-whitened record (varying compliance is deterministic).
+void ConfirmOuterRaceOnPrewhitened(const Record& record,
+                                   const BearingGeometry& bearing,
+                                   double shaft_hz,
+                                   const DiagnoseOptions& options,
+                                   Diagnosis* d) {
+  if (d->verdict != Verdict::kOuterRace || !options.confirm_outer_race || options.prewhiten) return;
+  DiagnoseOptions whitened = options;
+  whitened.prewhiten = true;
+  whitened.kurtogram_map = false;
+  const Diagnosis w = Diagnose(record, bearing, shaft_hz, whitened);
+  double p = 1.0;
+  for (const auto& det : w.faults)
+    if (det.component == FaultComponent::kOuterRace) p = det.p_value;
+  if (p <= options.false_alarm_probability) return;
+  for (auto& det : d->faults) {
+    if (det.component != FaultComponent::kOuterRace || !det.detected) continue;
+    det.detected = false;
+    det.reason =
+        "not claimed: the comb does not survive cepstrum pre-whitening (p = " + Fmt("%.2g", p) +
+        "): discrete lines at n Z f_c, the varying compliance of a healthy bearing (" + det.reason +
+        ")";
+  }
+  d->verdict = FirstDetectedVerdict(d->faults);
+}
+
 }  // namespace
 
-Diagnosis Diagnose(const Record& record,
-                   const BearingGeometry& bearing,
-                   double shaft_hz,
-                   const DiagnoseOptions& options) {
-  Diagnosis d;
-  const AnalysisNeeds needs = SetUpDiagnosis(record, bearing, shaft_hz, options, &d);
-  const double fs = record.sample_rate_hz;
-  const double max_scale = needs.max_scale, alpha_need = needs.alpha_need;
-  const double duration = needs.duration_s;
+namespace {
 
-  // Refuses non-finite and constant records; spikes and clipping become warnings.
-  d.warnings = CheckRecord(record.samples).warnings;
-  d.statistics = ComputeTimeStatistics(record.samples);
-
-  // The analysis is scale-free (every line is tested against its own floor); values far from 1
-  // are rescaled so that squares and spectra neither overflow nor underflow.
+// Step 1. The samples the analysis runs on: the record, rescaled when its values are far from 1
+// (the analysis is scale-free: every line is tested against its own floor; squares and spectra
+// must neither overflow nor underflow), then optionally cepstrum-pre-whitened. `raw` keeps the
+// record's lines for the shaft-speed estimate. The spans point into the record or into this
+// object's vectors (which keep their buffers when the object is moved).
+struct AnalysisSignal {
   std::vector<double> rescaled, whitened;
-  std::span<const double> x(record.samples);
-  if (d.statistics.peak > 1e30 || d.statistics.peak < 1e-30) {
-    rescaled.resize(record.samples.size());
-    for (size_t i = 0; i < rescaled.size(); ++i)
-      rescaled[i] = record.samples[i] / d.statistics.peak;
-    x = rescaled;
-  }
-  if (options.prewhiten) {
-    whitened = CepstrumPrewhiten(x);
-    x = whitened;
-  }
-  EnvelopeAnalyzer analyzer(x, fs);
-  const double df = analyzer.resolution_hz();
-  // Candidate widths start at the narrowest band that holds a whole race or roller comb, and at
-  // a floor window's worth of SES bins (a shorter SES has no noise floor to test lines against).
-  const double band_need = std::min(
-      alpha_need,
-      std::max(NarrowestBandHz(d.families, max_scale), (options.floor_window_bins + 2) * df));
+  std::span<const double> raw, x;
+};
 
-  // Kurtogram, only as deep as the candidate bands need: the narrowest candidate (width >=
-  // band_need) lies on binary level needed_level or on the ternary row below it, and the
-  // ternary rows reach needed_level + 0.6 with L = needed_level + 1; deeper rows hold no
-  // candidate and would cost ~15 % more. The map (options.kurtogram_map, for the plot) is a
-  // second kurtogram two levels deeper; the analysis does not depend on it.
+AnalysisSignal PrepareSignal(const Record& record, double peak, bool prewhiten) {
+  AnalysisSignal s;
+  s.raw = record.samples;
+  if (peak > 1e30 || peak < 1e-30) {
+    s.rescaled.resize(record.samples.size());
+    for (size_t i = 0; i < s.rescaled.size(); ++i) s.rescaled[i] = record.samples[i] / peak;
+    s.raw = s.rescaled;
+  }
+  s.x = s.raw;
+  if (prewhiten) {
+    s.whitened = CepstrumPrewhiten(s.raw);
+    s.x = s.whitened;
+  }
+  return s;
+}
+
+// The squared-envelope buffers of the kurtogram's candidate rows, kept per thread for the next
+// diagnosis (they are the largest allocation of an analysis).
+std::vector<std::vector<float>>& ReusedEnvelopeBuffers() {
+  thread_local std::vector<std::vector<float>> buffers;
+  return buffers;
+}
+
+// Step 2. The kurtogram tree the candidate bands come from, with the squared envelopes of the
+// candidate rows (each candidate's SES is the spectrum of its node's |c|^2: one forward
+// transform, no second demodulation of the band).
+struct BandTree {
+  std::vector<std::vector<float>> node_se;  // per level row, every node's |c|^2, m samples each
+  std::vector<double> levels;
+  std::vector<int> envelope_sizes;  // m per row
+  double envelope_gain2 = 0.0;
+  int samples = 0;  // transform size of the tree
+  KurtogramNode best;
+  std::vector<KurtogramNode> nodes;
+
+  int RowOf(double level) const {
+    for (size_t r = 0; r < levels.size(); ++r)
+      if (std::abs(levels[r] - level) < 1e-9) return static_cast<int>(r);
+    return -1;
+  }
+};
+
+// Kurtogram, only as deep as the candidate bands need: the narrowest candidate (width >=
+// band_need) lies on binary level needed_level or on the ternary row below it, and the
+// ternary rows reach needed_level + 0.6 with L = needed_level + 1; deeper rows hold no
+// candidate and would cost ~15 % more. The map (options.kurtogram_map, for the plot) is a
+// second kurtogram two levels deeper; the analysis does not depend on it.
+// Fills d->kurtogram (the map when asked) and d->kurtogram_best.
+BandTree ComputeBandTree(const EnvelopeAnalyzer& analyzer,
+                         double band_need,
+                         double alpha_need,
+                         int threads,
+                         const DiagnoseOptions& options,
+                         Diagnosis* d) {
+  const double fs = analyzer.sample_rate_hz();
   KurtogramOptions kopt;
-  const int auto_level = std::min(9, static_cast<int>(std::floor(std::log2(d.samples))) - 7);
+  const int auto_level = std::min(9, static_cast<int>(std::floor(std::log2(d->samples))) - 7);
   const int needed_level = std::max(1, static_cast<int>(std::floor(std::log2(fs / band_need))) - 1);
   kopt.max_level = options.kurtogram_max_level > 0
                        ? options.kurtogram_max_level
                        : std::max(1, std::min(auto_level, needed_level + 1));
   kopt.min_center_hz = alpha_need;
-  // The candidate rows' squared envelopes are kept: each candidate's SES is the spectrum of its
-  // node's |c|^2 (one forward transform), with no second demodulation of the band.
   kopt.keep_envelopes_min_hz = band_need;
   kopt.keep_envelopes_max_hz = kMaxWidthFactor * alpha_need;
-  thread_local std::vector<std::vector<float>> envelope_buffers;  // reused by the next call
-  kopt.envelope_buffers = &envelope_buffers;
-  const int threads =
-      options.threads > 0 ? options.threads : std::max(1, std::min(omp_get_num_procs(), 4));
+  kopt.envelope_buffers = &ReusedEnvelopeBuffers();
   kopt.threads = std::min(threads, 2);  // the kurtogram has two chains
-  Kurtogram analysis_kurtogram = FastKurtogram(analyzer, kopt);
-  // Kept apart (the map below, if any, replaces d.kurtogram; the report needs no envelopes).
-  std::vector<std::vector<float>> node_se = std::move(analysis_kurtogram.squared_envelopes);
-  analysis_kurtogram.squared_envelopes.assign(node_se.size(), {});
-  const Kurtogram& tree = analysis_kurtogram;  // levels, bins, sizes (valid until moved below)
-  auto row_of = [levels = tree.levels](double level) {
-    for (size_t r = 0; r < levels.size(); ++r)
-      if (std::abs(levels[r] - level) < 1e-9) return static_cast<int>(r);
-    return -1;
-  };
-  const std::vector<int> envelope_sizes = tree.envelope_sizes;
-  const double envelope_gain2 = tree.envelope_gain2;
-  const int tree_samples = tree.samples;
-  const KurtogramNode analysis_best = analysis_kurtogram.best;
-  const std::vector<KurtogramNode> nodes = analysis_kurtogram.Nodes();
+  Kurtogram analysis = FastKurtogram(analyzer, kopt);
+  BandTree tree;
+  // Kept apart (the map below, if any, replaces d->kurtogram; the report needs no envelopes).
+  tree.node_se = std::move(analysis.squared_envelopes);
+  analysis.squared_envelopes.assign(tree.node_se.size(), {});
+  tree.levels = analysis.levels;
+  tree.envelope_sizes = analysis.envelope_sizes;
+  tree.envelope_gain2 = analysis.envelope_gain2;
+  tree.samples = analysis.samples;
+  tree.best = analysis.best;
+  tree.nodes = analysis.Nodes();
   const int map_level = std::max(1, std::min(auto_level, needed_level + 2));
   if (options.kurtogram_map && options.kurtogram_max_level == 0 && map_level > kopt.max_level) {
     kopt.max_level = map_level;
     kopt.keep_envelopes_max_hz = -1;  // the map keeps none
     kopt.envelope_buffers = nullptr;
-    d.kurtogram = FastKurtogram(analyzer, kopt);
+    d->kurtogram = FastKurtogram(analyzer, kopt);
   } else {
-    d.kurtogram = std::move(analysis_kurtogram);
+    d->kurtogram = std::move(analysis);
   }
-  d.kurtogram_best = d.kurtogram.best;
+  d->kurtogram_best = d->kurtogram.best;
+  return tree;
+}
 
-  // Shaft speed from the raw spectrum (the record as given, lines intact).
-  std::optional<double> shaft_measured;
-  if (options.speed_search > 0.0) {
-    if (options.prewhiten) {
-      EnvelopeAnalyzer raw(rescaled.empty() ? std::span<const double>(record.samples)
-                                            : std::span<const double>(rescaled),
-                           fs);
-      shaft_measured = EstimateShaftSpeed(raw, shaft_hz, options.speed_search);
-    } else {
-      shaft_measured = EstimateShaftSpeed(analyzer, shaft_hz, options.speed_search);
-    }
-  }
-  d.measured_shaft_hz = shaft_measured;
+// Step 3. Shaft speed from the raw spectrum (the record as given, lines intact).
+std::optional<double> MeasureShaftSpeed(const AnalysisSignal& signal,
+                                        const EnvelopeAnalyzer& analyzer,
+                                        double shaft_hz,
+                                        const DiagnoseOptions& options) {
+  if (!(options.speed_search > 0.0)) return std::nullopt;
+  if (!options.prewhiten) return EstimateShaftSpeed(analyzer, shaft_hz, options.speed_search);
+  const EnvelopeAnalyzer raw(signal.raw, analyzer.sample_rate_hz());
+  return EstimateShaftSpeed(raw, shaft_hz, options.speed_search);
+}
 
-  const std::vector<KurtogramNode> candidates = CandidateBands(nodes, band_need, alpha_need, fs);
-  // Bonferroni over every candidate band, searched or not: the early stop below only ever
-  // searches fewer, so the false-alarm design is the same as searching them all.
-  d.candidate_bands = static_cast<int>(candidates.size());
-  d.multiplicity = double(kFamilies) * d.candidate_bands;
-
+DetectionOptions MakeDetectionOptions(const DiagnoseOptions& options) {
   DetectionOptions dopt;
   dopt.false_alarm_probability = options.false_alarm_probability;
   dopt.tolerance = options.tolerance;
   dopt.floor_window_bins = options.floor_window_bins;
   dopt.line_p_value = options.line_p_value;
   dopt.min_modulation = options.min_modulation;
+  return dopt;
+}
+
+// The comb search's centre, exclusions and Bonferroni factor.
+DetectionContext MakeDetectionContext(double shaft_hz, const Diagnosis& d) {
   DetectionContext ctx;
   ctx.shaft_hz = shaft_hz;
   ctx.multiplicity = d.multiplicity;
-  if (shaft_measured) {
-    ctx.center_scale = *shaft_measured / shaft_hz;
+  if (d.measured_shaft_hz) {
+    ctx.center_scale = *d.measured_shaft_hz / shaft_hz;
     ctx.measured_shaft_scale = ctx.center_scale;
   }
+  return ctx;
+}
 
+// Step 4. Every candidate band's SES, floor and four independent family searches, in two stages
+// (below); returns the band with the strongest family evidence, or the kurtogram's choice among
+// the candidates when no comb is significant anywhere. Sets d->searched_bands and
+// d->band_selection.
+BandResult SearchCandidateBands(const EnvelopeAnalyzer& analyzer,
+                                const BandTree& tree,
+                                const std::vector<KurtogramNode>& candidates,
+                                const DetectionContext& ctx,
+                                const DetectionOptions& dopt,
+                                const DiagnoseOptions& options,
+                                int threads,
+                                double alpha_need,
+                                Diagnosis* d) {
+  const double fs = analyzer.sample_rate_hz();
+  const double df = analyzer.resolution_hz();
   const int floor_half = options.floor_window_bins / 2 + 2;
   // Comb plans (dsp/detection.h, CombSearch): the speed grid, the bins each line visits and the
   // exclusions depend on the spectrum's size only, which is the same for (nearly) every band, so
@@ -520,7 +580,7 @@ Diagnosis Diagnose(const Record& record,
         if (p.first == bins) found = &p.second;
       if (!found) {
         std::vector<CombSearch> plans;
-        for (const auto& family : d.families) plans.emplace_back(family, ctx, dopt, df, bins);
+        for (const auto& family : d->families) plans.emplace_back(family, ctx, dopt, df, bins);
         comb_plans.emplace_back(bins, std::move(plans));
         found = &comb_plans.back().second;
       }
@@ -532,42 +592,43 @@ Diagnosis Diagnose(const Record& record,
   // Hz band [low, high] would also take bin `high` when it falls on a bin), so its SES comes
   // from the node's own squared envelope and its mean from the same bins.
   auto node_bins = [&](const KurtogramNode& node, int* lo, int* hi) {
-    const int nodes = static_cast<int>(std::lround(0.5 * fs / node.bandwidth_hz));
-    *lo = static_cast<int>((int64_t(node.index) * tree_samples + 2 * nodes - 1) / (2 * nodes));
-    *hi = node.index + 1 == nodes
-              ? tree_samples / 2 + 1
-              : static_cast<int>((int64_t(node.index + 1) * tree_samples + 2 * nodes - 1) /
-                                 (2 * nodes));
+    const int count = static_cast<int>(std::lround(0.5 * fs / node.bandwidth_hz));
+    *lo = static_cast<int>((int64_t(node.index) * tree.samples + 2 * count - 1) / (2 * count));
+    *hi = node.index + 1 == count
+              ? tree.samples / 2 + 1
+              : static_cast<int>((int64_t(node.index + 1) * tree.samples + 2 * count - 1) /
+                                 (2 * count));
   };
   // One band's SES, floor and four family searches; reads only shared state, writes *r.
-  auto evaluate =
-      [&](const KurtogramNode& node, EnvelopeAnalyzer::SesWorkspace* workspace, BandResult* r) {
-        r->node = node;
-        const Band band = node.band();
-        const double max_alpha = std::min(band.width_hz(), alpha_need + floor_half * df);
-        const int row = row_of(node.level);
-        SPALLKIT_CHECK(row >= 0 && !node_se[row].empty(),
-                       "diagnose: no kept envelope for kurtogram level " << node.level);
-        const int m = envelope_sizes[row];
-        r->envelope_size = m;
-        // SES power (level^2) in single precision: the transform is most of a band's cost, and
-        // the floor, z and p-values need ~6 digits, not 15 (dsp/envelope.h).
-        const std::vector<double> power = analyzer.SesPowerFromSquaredEnvelope(
-            std::span<const float>(node_se[row].data() + static_cast<size_t>(node.index) * m, m),
-            envelope_gain2,
-            max_alpha,
-            workspace);
-        r->normalized = NormalizeBandSes(power, df, band.width_hz(), dopt);
-        int lo = 0, hi = 0;
-        node_bins(node, &lo, &hi);
-        r->normalized.envelope_mean = SquaredEnvelopeMean(analyzer, lo, hi);
-        // Each family on its own here; which family explains which line is decided jointly on the
-        // chosen band (dsp/explain.h).
-        const std::vector<double> pair_scores = PairScores(r->normalized, dopt);
-        for (const CombSearch& plan : *plans_for(static_cast<int>(r->normalized.z.size())))
-          r->detections.push_back(plan.Detect(r->normalized, pair_scores));
-        for (const auto& det : r->detections) r->best_p = std::min(r->best_p, det.p_value);
-      };
+  auto evaluate = [&](const KurtogramNode& node,
+                      EnvelopeAnalyzer::SesWorkspace* workspace,
+                      BandResult* r) {
+    r->node = node;
+    const Band band = node.band();
+    const double max_alpha = std::min(band.width_hz(), alpha_need + floor_half * df);
+    const int row = tree.RowOf(node.level);
+    SPALLKIT_CHECK(row >= 0 && !tree.node_se[row].empty(),
+                   "diagnose: no kept envelope for kurtogram level " << node.level);
+    const int m = tree.envelope_sizes[row];
+    r->envelope_size = m;
+    // SES power (level^2) in single precision: the transform is most of a band's cost, and
+    // the floor, z and p-values need ~6 digits, not 15 (dsp/envelope.h).
+    const std::vector<double> power = analyzer.SesPowerFromSquaredEnvelope(
+        std::span<const float>(tree.node_se[row].data() + static_cast<size_t>(node.index) * m, m),
+        tree.envelope_gain2,
+        max_alpha,
+        workspace);
+    r->normalized = NormalizeBandSes(power, df, band.width_hz(), dopt);
+    int lo = 0, hi = 0;
+    node_bins(node, &lo, &hi);
+    r->normalized.envelope_mean = SquaredEnvelopeMean(analyzer, lo, hi);
+    // Each family on its own here; which family explains which line is decided jointly on the
+    // chosen band (dsp/explain.h).
+    const std::vector<double> pair_scores = PairScores(r->normalized, dopt);
+    for (const CombSearch& plan : *plans_for(static_cast<int>(r->normalized.z.size())))
+      r->detections.push_back(plan.Detect(r->normalized, pair_scores));
+    for (const auto& det : r->detections) r->best_p = std::min(r->best_p, det.p_value);
+  };
   std::vector<EnvelopeAnalyzer::SesWorkspace> workspaces(threads);
   std::optional<BandResult> best;
   std::optional<BandResult> kurt_choice;
@@ -605,10 +666,9 @@ Diagnosis Diagnose(const Record& record,
       for (int i = start; i < stop; ++i) {
         BandResult& r = results[i - start];
         const KurtogramNode& node = r.node;
-        ++d.searched_bands;
-        const bool is_kurtogram_best =
-            std::abs(node.center_hz - analysis_best.center_hz) < 1e-9 &&
-            std::abs(node.bandwidth_hz - analysis_best.bandwidth_hz) < 1e-9;
+        ++d->searched_bands;
+        const bool is_kurtogram_best = std::abs(node.center_hz - tree.best.center_hz) < 1e-9 &&
+                                       std::abs(node.bandwidth_hz - tree.best.bandwidth_hz) < 1e-9;
         const bool becomes_best = !best || BandKey(r) > BandKey(*best);
         const bool becomes_kurt_choice =
             !kurt_choice || (!kurt_choice_is_best &&
@@ -626,33 +686,87 @@ Diagnosis Diagnose(const Record& record,
     }
   }
 
-  envelope_buffers = std::move(node_se);
-
   // Without any significant comb, report the band the kurtogram prefers (among candidates).
-  BandResult chosen;
+  bool return_best = false;
   bool any_significant = false;
   for (const auto& det : best->detections)
     any_significant |= det.p_value <= options.false_alarm_probability;
   if (any_significant) {
-    chosen = std::move(*best);
-    d.band_selection = BandSelection::kFaultEvidence;
+    return_best = true;
+    d->band_selection = BandSelection::kFaultEvidence;
   } else {
-    chosen = std::move(*kurt_choice);
-    d.band_selection = BandSelection::kKurtogram;
+    return_best = false;
+    d->band_selection = BandSelection::kKurtogram;
   }
-  SetChosenBand(std::move(chosen), df, &d);
+  return return_best ? std::move(*best) : std::move(*kurt_choice);
+}
 
+// Step 5. Which family explains which line on the chosen band, the claims the record can
+// support, the measured rates and the verdict.
+void ExplainAndConclude(const DetectionContext& ctx,
+                        const DetectionOptions& dopt,
+                        double duration_s,
+                        double shaft_hz,
+                        const DiagnoseOptions& options,
+                        Diagnosis* d) {
   // Joint explanation: the best family claims the lines it explains, the others are re-tested on
   // what is left; ranked = explanation order, then the undetected by p-value.
-  JointExplanation joint = ExplainJointly(d.normalized, d.families, std::move(d.faults), ctx, dopt);
-  d.faults = std::move(joint.ranked);
-  d.explained_lines = std::move(joint.explained);
-  d.roller_integer_ratio_mismatch = joint.roller_integer_ratio_mismatch;
+  JointExplanation joint =
+      ExplainJointly(d->normalized, d->families, std::move(d->faults), ctx, dopt);
+  d->faults = std::move(joint.ranked);
+  d->explained_lines = std::move(joint.explained);
+  d->roller_integer_ratio_mismatch = joint.roller_integer_ratio_mismatch;
+  d->races = joint.races;
+  if (d->races.tested && !d->races.separable) d->warnings.push_back(d->races.Describe());
+  ApplyRecordLengthRule(duration_s, options.min_periods, d);
+  MeasureDetectedRates(shaft_hz, dopt, d);
+  d->verdict = FirstDetectedVerdict(d->faults);
+}
 
-  ApplyRecordLengthRule(duration, options.min_periods, &d);
+}  // namespace
 
-  MeasureDetectedRates(shaft_measured ? *shaft_measured : shaft_hz, dopt, &d);
-  d.verdict = FirstDetectedVerdict(d.faults);
+Diagnosis Diagnose(const Record& record,
+                   const BearingGeometry& bearing,
+                   double shaft_hz,
+                   const DiagnoseOptions& options) {
+  Diagnosis d;
+  const AnalysisNeeds needs = SetUpDiagnosis(record, bearing, shaft_hz, options, &d);
+  const double fs = record.sample_rate_hz;
+
+  // Refuses non-finite and constant records; spikes and clipping become warnings.
+  d.warnings = CheckRecord(record.samples).warnings;
+  d.statistics = ComputeTimeStatistics(record.samples);
+
+  const AnalysisSignal signal = PrepareSignal(record, d.statistics.peak, options.prewhiten);
+  EnvelopeAnalyzer analyzer(signal.x, fs);
+  const double df = analyzer.resolution_hz();
+  // Candidate widths start at the narrowest band that holds a whole race or roller comb, and at
+  // a floor window's worth of SES bins (a shorter SES has no noise floor to test lines against).
+  const double band_need = std::min(
+      needs.alpha_need,
+      std::max(NarrowestBandHz(d.families, needs.max_scale), (options.floor_window_bins + 2) * df));
+  const int threads =
+      options.threads > 0 ? options.threads : std::max(1, std::min(omp_get_num_procs(), 4));
+  BandTree tree = ComputeBandTree(analyzer, band_need, needs.alpha_need, threads, options, &d);
+  d.measured_shaft_hz = MeasureShaftSpeed(signal, analyzer, shaft_hz, options);
+
+  const std::vector<KurtogramNode> candidates =
+      CandidateBands(tree.nodes, band_need, needs.alpha_need, fs);
+  // Bonferroni over every candidate band, searched or not: the early stop of the search only
+  // ever searches fewer, so the false-alarm design is the same as searching them all.
+  d.candidate_bands = static_cast<int>(candidates.size());
+  d.multiplicity = double(kFamilies) * d.candidate_bands;
+  const DetectionOptions dopt = MakeDetectionOptions(options);
+  const DetectionContext ctx = MakeDetectionContext(shaft_hz, d);
+
+  BandResult chosen = SearchCandidateBands(
+      analyzer, tree, candidates, ctx, dopt, options, threads, needs.alpha_need, &d);
+  ReusedEnvelopeBuffers() = std::move(tree.node_se);
+  SetChosenBand(std::move(chosen), df, &d);
+
+  ExplainAndConclude(
+      ctx, dopt, needs.duration_s, d.measured_shaft_hz.value_or(shaft_hz), options, &d);
+  ConfirmOuterRaceOnPrewhitened(record, bearing, shaft_hz, options, &d);
   return d;
 }
 
@@ -749,7 +863,14 @@ std::string Diagnosis::ToJson(int indent) const {
       {"roller_integer_ratio_mismatch",
        std::isfinite(roller_integer_ratio_mismatch) ? ordered_json(roller_integer_ratio_mismatch)
                                                     : ordered_json(nullptr)},
-      {"lines", explained}};
+      {"lines", explained},
+      {"races",
+       races.tested ? ordered_json{{"separable", races.separable},
+                                   {"outer_evidence", races.outer_evidence},
+                                   {"inner_evidence", races.inner_evidence},
+                                   {"outer_significant", races.outer_significant},
+                                   {"inner_significant", races.inner_significant}}
+                    : ordered_json(nullptr)}};
   j["measured"] = {{"shaft_hz", Opt(measured_shaft_hz)},
                    {"f_b_hz", Opt(measured_f_b_hz)},
                    {"f_c_hz", Opt(measured_f_c_hz)},

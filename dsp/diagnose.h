@@ -30,6 +30,7 @@
 #include "core/record.h"
 #include "dsp/detection.h"
 #include "dsp/envelope.h"
+#include "dsp/explain.h"
 #include "dsp/fault_bands.h"
 #include "dsp/kurtogram.h"
 #include "dsp/statistics.h"
@@ -73,6 +74,13 @@ struct DiagnoseOptions {
   // every candidate either way, so the false-alarm design does not change; a faulty record
   // usually stops after the first stage (each band costs an SES, a floor and four combs).
   int first_bands = 16;
+  // An outer-race verdict must survive cepstrum pre-whitening: its comb (any candidate band)
+  // must stay significant on the pre-whitened record, else the family is not claimed. Every
+  // healthy rolling bearing is modulated at Z f_c = BPFO by the rollers passing the load zone
+  // (varying compliance); that response is deterministic, discrete raw lines at n Z f_c, which
+  // pre-whitening flattens, whereas a spall's impacts (with their slip jitter) survive it. Costs
+  // a second analysis on records called outer_race. Off when `prewhiten` is already set.
+  bool confirm_outer_race = true;
   // Threads (OpenMP) for the candidate bands and the kurtogram's two chains; 0: automatic,
   // min(number of processors, 4). Each band is computed by one thread with its own buffers and
   // the bands are compared in the same fixed order as with one thread, so the Diagnosis is
@@ -114,6 +122,9 @@ struct Diagnosis {
   std::vector<ExplainedLine> explained_lines;
   // Rolling-element comb: f_b / f_sb relative distance to the nearest integer (NaN: not tested).
   double roller_integer_ratio_mismatch = 0.0;
+  // Outer against inner race on the harmonics only one of them predicts (dsp/explain.h); when
+  // both were detected and cannot be told apart, warnings[] says so.
+  RaceSeparation races;
 
   TimeStatistics statistics;  // of the record as given (before pre-whitening)
   double sample_rate_hz = 0.0;

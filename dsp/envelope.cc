@@ -266,22 +266,24 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
   float* z = reinterpret_cast<float*>(p.packed.get());
   for (int t = 0; t < m; ++t) z[t] = c[2 * t] * c[2 * t] + c[2 * t + 1] * c[2 * t + 1];
   const double gain2 = rms * 2.0 / n_ * (rms * 2.0 / n_);
-  PackedSesPower(&p, m, b.alpha_bins, gain2, power.data());
+  PackedSesPower(&p, nullptr, m, b.alpha_bins, gain2, power.data());
   return power;
 }
 
-// The second half of the SES: z (p->packed) holds m samples of SE (any scale; gain2 makes it the
-// true one) packed as z_t = se_2t + i se_2t+1; removes the mean (in double), transforms, and
-// writes P(k) = |FFT(SE - mean)_k|^2 / m^2 for k = 1..alpha_bins to power[k], power[0] = 0.
+// The second half of the SES: the m samples of SE (any scale; gain2 makes it the true one) are
+// in se, or already in p->packed when se is null; packed as z_t = se_2t + i se_2t+1 with the mean
+// removed (computed in double), transformed, and P(k) = |FFT(SE - mean)_k|^2 / m^2 written for
+// k = 1..alpha_bins to power[k], power[0] = 0.
 // Multi-versioned (core/multiversion.h): the split of the half-size transform into the real one
 // is a loop over every SES bin of every band the diagnosis searches.
 SPALLKIT_MULTIVERSION
 void EnvelopeAnalyzer::PackedSesPower(
-    PlansF* pp, int m, int alpha_bins, double gain2, double* power) {
+    PlansF* pp, const float* se, int m, int alpha_bins, double gain2, double* power) {
   PlansF& p = *pp;
   float* z = reinterpret_cast<float*>(p.packed.get());
-  const float mean = static_cast<float>(Sum(z, m) / m);
-  for (int t = 0; t < m; ++t) z[t] -= mean;
+  const float* source = se ? se : z;
+  const float mean = static_cast<float>(Sum(source, m) / m);
+  for (int t = 0; t < m; ++t) z[t] = source[t] - mean;
   p.half.Execute(p.packed.get(), p.packed_spectrum.get());
 
   // X_k = E_k + w^k O_k with E_k = (Z_k + conj Z_{-k}) / 2, O_k = -i (Z_k - conj Z_{-k}) / 2
@@ -338,10 +340,10 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFromSquaredEnvelope(std::span<cons
   auto& slot = workspace->plans_[m];
   if (!slot) slot = std::make_unique<PlansF>(m);
   PlansF& p = *slot;
-  // Real samples packed pairwise into the complex buffer (std::complex<float> is two floats).
-  std::copy(se.begin(), se.end(), reinterpret_cast<float*>(p.packed.get()));
+  // The real samples go into the complex buffer pairwise (std::complex<float> is two floats) as
+  // the mean is removed.
   std::vector<double> power(alpha_bins + 1, 0.0);
-  PackedSesPower(&p, m, alpha_bins, gain2, power.data());
+  PackedSesPower(&p, se.data(), m, alpha_bins, gain2, power.data());
   return power;
 }
 

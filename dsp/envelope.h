@@ -142,8 +142,10 @@ class EnvelopeAnalyzer {
   BandBins Resolve(const Band& band, double max_alpha_hz) const;
   Plans& PlansFor(int m);
   void FillEnvelope(const BandBins& bins);  // writes c into work_ of plans for bins.m
-  // The SES from SE packed in plans->packed (SesPowerFast, SesPowerFromSquaredEnvelope).
-  static void PackedSesPower(PlansF* plans, int m, int alpha_bins, double gain2, double* power);
+  // The SES from SE in se, or packed in plans->packed when se is null (SesPowerFast,
+  // SesPowerFromSquaredEnvelope).
+  static void PackedSesPower(
+      PlansF* plans, const float* se, int m, int alpha_bins, double gain2, double* power);
 
   int n_ = 0;
   double fs_hz_ = 0;

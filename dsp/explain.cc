@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "core/error.h"
@@ -275,6 +277,56 @@ std::vector<ExplainedLine> ClaimLines(const NormalizedSpectrum& spectrum,
   return out;
 }
 
+namespace {
+
+// Mean uncapped -ln p of `det`'s non-excluded harmonics away from every multiple of other_hz,
+// and how many of those are significant.
+std::pair<double, int> UnsharedEvidence(const FamilyDetection& det,
+                                        double other_hz,
+                                        double df,
+                                        const DetectionOptions& options,
+                                        const ExplanationOptions& explanation) {
+  double sum = 0.0;
+  int count = 0, significant = 0;
+  for (const LineEvidence& e : det.lines) {
+    if (e.line.is_sideband() || e.excluded) continue;
+    const double window = explanation.window_bins * df + options.guard_fraction * e.freq_hz;
+    if (other_hz > 0.0 && DistanceToHarmonic(e.freq_hz, other_hz) <= window) continue;
+    sum += -std::log(std::max(e.p_value, 1e-300));
+    ++count;
+    significant += e.significant;
+  }
+  return {count > 0 ? sum / count : 0.0, significant};
+}
+
+}  // namespace
+
+RaceSeparation SeparateRaces(const FamilyDetection& outer,
+                             const FamilyDetection& inner,
+                             double resolution_hz,
+                             const DetectionOptions& options,
+                             const ExplanationOptions& explanation) {
+  RaceSeparation r;
+  r.tested = true;
+  std::tie(r.outer_evidence, r.outer_significant) =
+      UnsharedEvidence(outer, inner.fundamental_hz, resolution_hz, options, explanation);
+  std::tie(r.inner_evidence, r.inner_significant) =
+      UnsharedEvidence(inner, outer.fundamental_hz, resolution_hz, options, explanation);
+  r.separable = r.outer_significant > 0 || r.inner_significant > 0;
+  return r;
+}
+
+std::string RaceSeparation::Describe() const {
+  char buf[256];
+  std::snprintf(buf,
+                sizeof buf,
+                "outer and inner race not separable: no significant harmonic of either lies away "
+                "from the other's comb (unshared evidence outer %.1f, inner %.1f)",
+                outer_evidence,
+                inner_evidence);
+  return buf;
+}
+
 JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
                                 const std::vector<FaultFamily>& families,
                                 std::vector<FamilyDetection> detections,
@@ -340,12 +392,27 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
         std::abs(ratio - n) < std::abs(ratio - kinematic_ratio);
   }
 
+  // Outer against inner race on the harmonics only one of them predicts.
+  const FamilyDetection* outer_det = nullptr;
+  const FamilyDetection* inner_det = nullptr;
+  for (const FamilyDetection& det : detections) {
+    if (!det.detected) continue;
+    if (det.component == FaultComponent::kOuterRace) outer_det = &det;
+    if (det.component == FaultComponent::kInnerRace) inner_det = &det;
+  }
+  if (outer_det && inner_det)
+    out.races = SeparateRaces(*outer_det, *inner_det, spectrum.resolution_hz, options, explanation);
+
   auto explains_first = [&](const FamilyDetection& a, const FamilyDetection& b) {
     using C = FaultComponent;
     const bool rc = a.component == C::kRollingElement && b.component == C::kCage;
     const bool cr = a.component == C::kCage && b.component == C::kRollingElement;
     if (rc) return !out.roller_is_cage_comb;
     if (cr) return out.roller_is_cage_comb;
+    const bool oi = a.component == C::kOuterRace && b.component == C::kInnerRace;
+    const bool io = a.component == C::kInnerRace && b.component == C::kOuterRace;
+    if ((oi || io) && out.races.separable && out.races.outer_evidence != out.races.inner_evidence)
+      return oi == (out.races.outer_evidence > out.races.inner_evidence);
     if (a.harmonic_evidence != b.harmonic_evidence)
       return a.harmonic_evidence > b.harmonic_evidence;
     return a.p_value < b.p_value;

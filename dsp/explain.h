@@ -111,6 +111,30 @@ std::vector<ExplainedLine> ClaimLines(const NormalizedSpectrum& spectrum,
                                       const DetectionOptions& options,
                                       const ExplanationOptions& explanation = {});
 
+// Outer race against inner race on lines that only one of them predicts. For a 6205, 3 BPFO
+// lies 0.7 % from 2 BPFI and 6 BPFO from 4 BPFI (MFPT bearing: 3 BPFO 2.4 % from 2 BPFI), so a
+// strong race fault feeds the other race's comb with coincident harmonics, and the inner race's
+// +/- f_r sidebands around such a harmonic are then only the shaft modulation of the other
+// fault's line. A harmonic is shared when it lies within the claim window (window_bins bins +
+// the guard fraction of its frequency) of any multiple of the other family's measured
+// fundamental.
+struct RaceSeparation {
+  bool tested = false;  // both races detected on their own
+  // Mean uncapped -ln p of the non-excluded harmonics that are not shared (0: none), and how
+  // many of them are significant.
+  double outer_evidence = 0.0, inner_evidence = 0.0;
+  int outer_significant = 0, inner_significant = 0;
+  // Neither race has a significant harmonic of its own: the record cannot tell them apart at
+  // its resolution; the order then falls back on the harmonic evidence of all lines.
+  bool separable = true;
+  std::string Describe() const;  // one line for a warning
+};
+RaceSeparation SeparateRaces(const FamilyDetection& outer,
+                             const FamilyDetection& inner,
+                             double resolution_hz,
+                             const DetectionOptions& options,
+                             const ExplanationOptions& explanation = {});
+
 struct JointExplanation {
   // Detected families in explanation order, then the others by p-value.
   std::vector<FamilyDetection> ranked;
@@ -118,6 +142,7 @@ struct JointExplanation {
   // f_b / f_sb - nearest integer, relative; NaN when not tested (no measured sideband spacing).
   double roller_integer_ratio_mismatch = 0.0;
   bool roller_is_cage_comb = false;
+  RaceSeparation races;  // tested when both races were detected on their own
 };
 
 // `detections` are the four families tested independently on `spectrum` with `context`, in the

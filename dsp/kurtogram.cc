@@ -105,6 +105,35 @@ void StoreSquaredEnvelopes(const std::complex<float>* env, size_t count, std::ve
   for (size_t j = 0; j < count; ++j) o[j] = c[2 * j] * c[2 * j] + c[2 * j + 1] * c[2 * j + 1];
 }
 
+// e^{2 pi i j / m}, j < m, as a coarse step times a fine step, e^{2 pi i c F / m} e^{2 pi i f / m}
+// with j = c F + f, F = floor(sqrt(m)): ~2 sqrt(m) sin/cos, and tables small enough to stay in
+// cache (PlaceBins forms the products as it goes; a full table of m roots per row was written and
+// read back from memory for the large rows). Error ~1e-7, the level of the single-precision
+// transforms the roots feed.
+struct UnitRoots {
+  int m = 0, fine = 1;
+  std::vector<float> fr, fi, cr, ci;  // fine steps f < F, coarse steps c < ceil(m / F)
+
+  void Make(int size) {
+    m = size;
+    fine = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(m))));
+    const int coarse = (m + fine - 1) / fine;
+    fr.resize(fine);
+    fi.resize(fine);
+    for (int i = 0; i < fine; ++i) {
+      fr[i] = static_cast<float>(std::cos(2 * std::numbers::pi * i / m));
+      fi[i] = static_cast<float>(std::sin(2 * std::numbers::pi * i / m));
+    }
+    cr.resize(coarse);
+    ci.resize(coarse);
+    for (int c = 0; c < coarse; ++c) {
+      const double angle = 2 * std::numbers::pi * static_cast<double>(c) * fine / m;
+      cr[c] = static_cast<float>(std::cos(angle));
+      ci[c] = static_cast<float>(std::sin(angle));
+    }
+  }
+};
+
 // Per-thread buffers, kept between calls and grown on demand: a 10 s record at 48 kHz needs
 // ~20 MB of them, and fresh allocations of that size cost page faults on every call (10 % of the
 // run time).
@@ -112,7 +141,7 @@ struct ChainBuffers {
   size_t row_size = 0, node_size = 0;
   FftwArray<std::complex<float>> child, parent;  // all envelopes of a row, node after node
   FftwArray<std::complex<float>> in, odd;        // one node's transform input and output
-  std::vector<std::complex<float>> row_roots;    // the current row's e^{2 pi i j / m_p}
+  UnitRoots row_roots;                           // the current row's e^{2 pi i j / m_p}
   std::unique_ptr<double[]> power;
 };
 
@@ -132,31 +161,6 @@ ChainBuffers& ThreadBuffers(size_t row_size, size_t node_size) {
   return b;
 }
 
-// out[j] = e^{2 pi i j / m}, j < m, as coarse step times fine step: ~2 sqrt(m) sin/cos instead
-// of m (which would cost more than the transforms the table serves), and a product loop that
-// vectorises. Error ~1e-7, the level of the single-precision transforms it feeds.
-void UnitRoots(int m, std::vector<std::complex<float>>* out) {
-  const int fine = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(m))));
-  const int coarse = (m + fine - 1) / fine;
-  std::vector<float> fr(fine), fi(fine);
-  for (int i = 0; i < fine; ++i) {
-    fr[i] = static_cast<float>(std::cos(2 * std::numbers::pi * i / m));
-    fi[i] = static_cast<float>(std::sin(2 * std::numbers::pi * i / m));
-  }
-  out->resize(static_cast<size_t>(coarse) * fine);
-  float* o = reinterpret_cast<float*>(out->data());
-  for (int c = 0; c < coarse; ++c) {
-    const double angle = 2 * std::numbers::pi * static_cast<double>(c) * fine / m;
-    const float cr = static_cast<float>(std::cos(angle)), ci = static_cast<float>(std::sin(angle));
-    float* row = o + 2 * static_cast<size_t>(c) * fine;
-    for (int i = 0; i < fine; ++i) {
-      row[2 * i] = cr * fr[i] - ci * fi[i];
-      row[2 * i + 1] = cr * fi[i] + ci * fr[i];
-    }
-  }
-  out->resize(m);
-}
-
 // max(0, <|c|^4>/<|c|^2>^2 - 2) over m envelope samples.
 double EnvelopeKurtosis(const std::complex<float>* envelope, int m, double* power) {
   const float* c = reinterpret_cast<const float*>(envelope);
@@ -169,16 +173,15 @@ double EnvelopeKurtosis(const std::complex<float>* envelope, int m, double* powe
   return sum2 > 0 ? std::max(0.0, m * sum4 / (sum2 * sum2) - 2.0) : 0.0;
 }
 
-// out[k mod m_out] = in[k - lo] * tw[(k mod m_tw) * tw_stride] for k in [lo, hi) (tw null: no
-// factor), in runs where neither index wraps, so the inner loops are contiguous. The complex
-// product is written out: std::complex's operator* checks for NaN/inf and does not vectorise.
+// out[k mod m_out] = in[k - lo] * e^{2 pi i k / roots.m} for k in [lo, hi) (roots null: no
+// factor), in runs where no index wraps and the coarse root is fixed, so the inner loops are
+// contiguous. The complex products are written out: std::complex's operator* checks for NaN/inf
+// and does not vectorise.
 void PlaceBins(const std::complex<float>* in,
                int lo,
                int hi,
                int m_out,
-               const std::complex<float>* tw,
-               int m_tw,
-               int tw_stride,
+               const UnitRoots* roots,
                std::complex<float>* out) {
   int k = lo;
   while (k < hi) {
@@ -186,13 +189,15 @@ void PlaceBins(const std::complex<float>* in,
     int run = std::min(hi - k, m_out - p);
     const float* v = reinterpret_cast<const float*>(in + (k - lo));
     float* o = reinterpret_cast<float*>(out + p);
-    if (tw) {
-      const int q = k % m_tw;
-      run = std::min(run, m_tw - q);
-      const float* t = reinterpret_cast<const float*>(tw + static_cast<size_t>(q) * tw_stride);
-      const size_t step = 2 * static_cast<size_t>(tw_stride);
+    if (roots) {
+      const int q = k % roots->m;
+      const int c = q / roots->fine, f0 = q % roots->fine;
+      run = std::min({run, roots->m - q, roots->fine - f0});
+      const float cr = roots->cr[c], ci = roots->ci[c];
+      const float* fr = roots->fr.data() + f0;
+      const float* fi = roots->fi.data() + f0;
       for (int j = 0; j < run; ++j) {
-        const float tr = t[j * step], ti = t[j * step + 1];
+        const float tr = cr * fr[j] - ci * fi[j], ti = cr * fi[j] + ci * fr[j];
         o[2 * j] = v[2 * j] * tr - v[2 * j + 1] * ti;
         o[2 * j + 1] = v[2 * j] * ti + v[2 * j + 1] * tr;
       }
@@ -267,7 +272,7 @@ void ProcessChain(const std::complex<float>* xf,
         continue;
       }
       ZeroOutsideBins(lo, hi, m, in);
-      PlaceBins(xf + lo, lo, hi, m, nullptr, 1, 1, in);
+      PlaceBins(xf + lo, lo, hi, m, nullptr, in);
       fft.Execute(in, env);
       row[i] = EnvelopeKurtosis(env, m, b.power.get());
     }
@@ -279,10 +284,7 @@ void ProcessChain(const std::complex<float>* xf,
     const ChainRow& up = chain[level];
     const int mp = up.m, mc = up.m / 2;
     ComplexFftF fft(mc, +1);
-    // This row's roots, e^{2 pi i j / m_p}, made for the row (UnitRoots writes them in order; a
-    // table of the top row read at a stride would cost a cache line per bin for the deep rows and
-    // a full copy for the top one).
-    UnitRoots(mp, &b.row_roots);
+    b.row_roots.Make(mp);  // e^{2 pi i j / m_p}
     std::vector<double>& row = (*result)[up.row];
     row.assign(up.nodes, 0.0);
     std::complex<float>* odd = in + mc;  // second half of the node buffer (size m_top >= 2 mc)
@@ -297,7 +299,7 @@ void ProcessChain(const std::complex<float>* xf,
       }
       SPALLKIT_CHECK(hi - lo <= mc, "kurtogram node of " << hi - lo << " bins, m " << mc);
       ZeroOutsideBins(lo, hi, mc, in);
-      PlaceBins(xf + lo, lo, hi, mc, b.row_roots.data(), mp, 1, in);
+      PlaceBins(xf + lo, lo, hi, mc, &b.row_roots, in);
       fft.Execute(in, odd);
       // Even samples: the sum of the children; interleaved with the odd ones.
       const float* lower = reinterpret_cast<const float*>(child + static_cast<size_t>(2 * i) * mc);
@@ -308,8 +310,10 @@ void ProcessChain(const std::complex<float>* xf,
       // Four samples of each at a time with vector shuffles (mc is a multiple of 64, see
       // FftFastSize), accumulating the moments on the way (|c|^2 in float, sums in double).
       typedef float F8 __attribute__((vector_size(32)));
-      typedef double D4 __attribute__((vector_size(32)));
-      D4 acc2 = {0, 0, 0, 0}, acc4 = {0, 0, 0, 0}, acc2b = acc2, acc4b = acc4;
+      // The eight |c|^2 of a step are widened to doubles as one vector (a split into halves
+      // made GCC spill them through the stack); lanes 0-3 and 4-7 are summed as two accumulators.
+      typedef double D8 __attribute__((vector_size(64)));
+      D8 acc2 = {0, 0, 0, 0, 0, 0, 0, 0}, acc4 = acc2;
       for (int s = 0; s < mc; s += 4) {
         F8 l, u, d;
         std::memcpy(&l, lower + 2 * s, sizeof(l));
@@ -323,19 +327,14 @@ void ProcessChain(const std::complex<float>* xf,
         const F8 a = sum * sum, c = d * d;
         const F8 power = __builtin_shufflevector(a, c, 0, 2, 4, 6, 8, 10, 12, 14) +
                          __builtin_shufflevector(a, c, 1, 3, 5, 7, 9, 11, 13, 15);
-        const D4 lo4 =
-            __builtin_convertvector(__builtin_shufflevector(power, power, 0, 1, 2, 3), D4);
-        const D4 hi4 =
-            __builtin_convertvector(__builtin_shufflevector(power, power, 4, 5, 6, 7), D4);
-        acc2 += lo4;
-        acc4 += lo4 * lo4;
-        acc2b += hi4;
-        acc4b += hi4 * hi4;
+        const D8 wide = __builtin_convertvector(power, D8);
+        acc2 += wide;
+        acc4 += wide * wide;
       }
-      acc2 += acc2b;
-      acc4 += acc4b;
-      const double sum2 = (acc2[0] + acc2[1]) + (acc2[2] + acc2[3]);
-      const double sum4 = (acc4[0] + acc4[1]) + (acc4[2] + acc4[3]);
+      const double sum2 =
+          ((acc2[0] + acc2[4]) + (acc2[1] + acc2[5])) + ((acc2[2] + acc2[6]) + (acc2[3] + acc2[7]));
+      const double sum4 =
+          ((acc4[0] + acc4[4]) + (acc4[1] + acc4[5])) + ((acc4[2] + acc4[6]) + (acc4[3] + acc4[7]));
       row[i] = sum2 > 0 ? std::max(0.0, mp * sum4 / (sum2 * sum2) - 2.0) : 0.0;
     }
     if (up.keep)

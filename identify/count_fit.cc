@@ -318,6 +318,9 @@ bool CountFitOptions::IsValid(std::string* error) const {
   if (!(max_smear_rad > 0.01 && max_smear_rad <= 1.0))
     return fail("count fit: max_smear_rad must be in (0.01, 1]");
   if (exhaustive_max_count < 1) return fail("count fit: exhaustive_max_count must be >= 1");
+  if (!(temperature_cage >= 1 && temperature_sidebands >= 1 && std::isfinite(temperature_cage) &&
+        std::isfinite(temperature_sidebands)))
+    return fail("count fit: temperatures must be finite and >= 1");
   if (!(min_relative_amplitude >= 0 && min_relative_amplitude < 1))
     return fail("count fit: min_relative_amplitude must be in [0, 1)");
   return true;
@@ -737,7 +740,7 @@ CountFit FitRollerCount(const CageAverage& average,
       for (const auto& s : fits[k]) {
         ta.push_back(ln_za(s, out.chi2_scale));
         tb.push_back(ln_zb(s, out.chi2_scale_sidebands));
-        tc.push_back(ta.back() + tb.back());
+        tc.push_back(ta.back() / o.temperature_cage + tb.back() / o.temperature_sidebands);
       }
       const double ln_configs = std::log(static_cast<double>(n_configs[k]));
       out.log_evidence_cage[k] = LogSumExp(ta) - ln_configs;
@@ -753,8 +756,13 @@ CountFit FitRollerCount(const CageAverage& average,
       p->resize(kmax + 1);
       for (int k = 0; k <= kmax; ++k) (*p)[k] = std::exp(lz[k] - lse);
     };
-    normalise(out.log_evidence_cage, &out.probability_cage);
-    normalise(out.log_evidence_sidebands, &out.probability_sidebands);
+    auto tempered = [&](std::vector<double> lz, double t) {
+      for (double& v : lz) v /= t;
+      return lz;
+    };
+    normalise(tempered(out.log_evidence_cage, o.temperature_cage), &out.probability_cage);
+    normalise(tempered(out.log_evidence_sidebands, o.temperature_sidebands),
+              &out.probability_sidebands);
     normalise(out.log_evidence, &out.probability);
   };
 

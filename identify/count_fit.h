@@ -66,6 +66,14 @@ struct CountFitOptions {
   // Half angle of the load zone (rad): > 0 fixes it (from the record's load), 0 fits it.
   double load_zone_half_angle_rad = 0.0;
   bool use_sidebands = true;  // feature B (when sidebands are given)
+  // Temperatures of each feature's log evidence: P(K) is proportional to
+  // exp(ln Z_A(K) / temperature_cage + ln Z_B(K) / temperature_sidebands). The BIC evidence
+  // assumes the model is right up to independent noise; on simulated records it is not (the
+  // hump shape and the sideband pattern miss details that grow with the number of lines), so the
+  // temperatures are calibrated on simulated records of known count (docs/IDENTIFY.md,
+  // "Calibration"): the values that maximise the mean log probability of the true count.
+  double temperature_cage = 12.0;
+  double temperature_sidebands = 50.0;
   // Feature B is evaluated only for configurations whose feature-A chi2 is within this of the
   // best (the others cannot matter; B is the costly part).
   double sideband_screen_chi2 = 60.0;
@@ -104,7 +112,8 @@ struct CountFit {
   int sideband_lines = 0;             // complex lines of feature B (0: not used)
   double chi2_scale = 1.0;            // feature A's Birge factor (>= 1)
   double chi2_scale_sidebands = 1.0;  // feature B's
-  // Per K = 0..max_count: log evidence and probability of each feature alone and combined.
+  // Per K = 0..max_count: log evidence and probability of each feature alone and combined (the
+  // combined log evidence and all probabilities with the temperatures applied).
   std::vector<double> log_evidence_cage, log_evidence_sidebands, log_evidence;
   std::vector<double> probability_cage, probability_sidebands, probability;
   std::vector<HumpFit> best;                      // best configuration per K (combined evidence)

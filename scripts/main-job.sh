@@ -21,15 +21,14 @@ OUT=${SPALLKIT_OUT:-out}
 mkdir -p "$OUT/plots"
 
 # The scene's own speed (1200 rpm, the paper's) for 1 s (8.3 cage turns, 1 Hz resolution): about
-# 50 s of simulation on the 2-core machine. Friction at the EHL traction level (mu 0.1 / 0.08):
-# with the scene's 0.01 / 0.005 the rigid defective roller gets trapped with its through-length
-# spall on a race (docs/BEARING_MODEL.md, "Spall trapping"); with an 8 mm spall it slides and
-# resumes about 3 times per cage revolution, and the diagnosis then says "cage", not
-# "rolling_element" (docs/PAPER.md, "The main job").
+# 60 s of simulation on the 2-core machine. The paper's friction (mu 0.01 / 0.005, the scene's)
+# with the lubricant traction law on the roller-race contacts (friction.model = "ehl",
+# docs/CONTACT.md "Lubricant traction"): with Coulomb at mu 0.01 alone the rigid defective roller
+# is trapped on its spall corners at its first loaded spall passage (docs/PAPER.md, "The main
+# job").
 RPM=1200
 SETS=${SPALLKIT_SIM_SETS:-"--set model.fidelity=hybrid --set mesh.size_mm=2.0 \
-  --set operation.speed_rpm=$RPM --set run.duration_s=1.0 \
-  --set friction.mu_static=0.1 --set friction.mu_dynamic=0.08"}
+  --set operation.speed_rpm=$RPM --set run.duration_s=1.0 --set friction.model=ehl"}
 echo "== simulate datasets/scenes/paper-verification.toml ($SETS)"
 # shellcheck disable=SC2086
 time "$SPALL" simulate datasets/scenes/paper-verification.toml -o "$OUT/run.h5" --csv "$OUT/run.csv" \

@@ -1,39 +1,19 @@
 #!/usr/bin/env python3
 """The paper's parametric study in one command (datasets/sweeps/paper-study.toml, docs/PAPER.md).
 
-For each [[part]] of the study file: writes OUT/<part>/sweep.toml (a `spall dataset` sweep), runs
-`spall dataset run` into OUT/<part> (resumable: run the command again to finish a killed study),
+For each [[part]] of the study file: runs its `spall dataset` sweep file (`sweep`, relative to the
+study file) with `spall dataset run` into OUT/<part> (resumable: run the command again to finish a
+killed study),
 then `spall plot study` for each quantity of [plots] (OUT/<part>-<quantity>.png and .csv), and
 finally OUT/summary.md: one table per part, a row per case, a column per quantity.
 Python standard library only.
 """
 import argparse
 import csv
-import json
 import os
 import subprocess
 import sys
 import tomllib
-
-
-def toml_value(v):
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v)
-    if isinstance(v, str):
-        return json.dumps(v)
-    if isinstance(v, list):
-        return "[" + ", ".join(toml_value(x) for x in v) + "]"
-    raise ValueError(f"cannot write {v!r} as TOML")
-
-
-def sweep_text(scene, sets, grid):
-    lines = ["[base]", f"scene = {json.dumps(scene)}", "", "[base.set]"]
-    lines += [f"{json.dumps(k)} = {toml_value(v)}" for k, v in sets.items()]
-    lines += ["", "[grid]"]
-    lines += [f"{json.dumps(k)} = {toml_value(v)}" for k, v in grid.items()]
-    return "\n".join(lines) + "\n"
 
 
 def quantity_file_name(q):
@@ -68,13 +48,7 @@ def main():
             continue
         out = os.path.join(a.out, name)
         os.makedirs(out, exist_ok=True)
-        sweep = os.path.join(a.out, f"{name}-sweep.toml")
-        scene = os.path.normpath(os.path.join(here, part["scene"]))
-        sets = dict(study.get("set", {}))
-        sets.update(part.get("set", {}))
-        with open(sweep + ".tmp", "w") as f:
-            f.write(sweep_text(scene, sets, part["grid"]))
-        os.replace(sweep + ".tmp", sweep)
+        sweep = os.path.normpath(os.path.join(here, part["sweep"]))
         print(f"== {name}: {a.spall} dataset run {sweep} --out {out}", flush=True)
         rc = subprocess.run([a.spall, "dataset", "run", sweep, "--out", out,
                              "--workers", str(a.workers)]).returncode

@@ -267,8 +267,12 @@ double RollerContacts::Contact(
   const int counter = static_cast<int>(body);
   const double m = reduced_mass_[3 * j + counter];
   const double m_t = reduced_mass_t_[3 * j + counter];
-  double q[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0;
+  double q[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0, ue_acc = 0;
   double tx = -pts[0].ny, ty = pts[0].nx;
+  // Velocity of the roller's circle centre (the contact points move with it): the surfaces'
+  // speeds relative to the contact give the lubricant's entrainment speed.
+  const double centre_vx = b.vx - b.omega * (centre_y_[j] - b.y);
+  const double centre_vy = b.vy + b.omega * (centre_x_[j] - b.x);
   for (int k = 0; k < npts; ++k) {
     const RacePoint& p = pts[k];
     if (!(p.delta > 0)) continue;
@@ -295,6 +299,9 @@ double RollerContacts::Contact(
     q_total += q[k];
     kn_total += kn;
     vt_acc += q[k] * (rvx * tx + rvy * ty);
+    const double u_roller = b.omega * ((p.px - centre_x_[j]) * ty - (p.py - centre_y_[j]) * tx);
+    const double u_counter = (vx - centre_vx) * tx + (vy - centre_vy) * ty;
+    ue_acc += q[k] * 0.5 * (u_roller + u_counter);
   }
   if (!(q_total > 0)) {
     *spring = 0.0;
@@ -303,12 +310,19 @@ double RollerContacts::Contact(
   // The contact module's friction law: stick spring returned to mu(v_t) Q, plus a damper on
   // the stick spring (capped too).
   const double vt = vt_acc / q_total;
-  const double cap = friction_law_.Coefficient(vt) * q_total;
-  const double kt = options_.tangential_stiffness_ratio * kn_total;
-  const double ct = 2.0 * zeta * std::sqrt(kt * m_t);
-  const double fs = contact::ReturnMap(*spring, vt * dt, kt, cap).force;
-  const double f = std::clamp(fs - ct * vt, -cap, cap);
-  *spring = fs;
+  double f;
+  if (palmgren && scene_.friction.model == contact::TractionModel::kEhl) {
+    // Lubricated race contact: the traction curve of the slide-to-roll ratio, no stick.
+    f = scene_.friction.ehl.Force(q_total, vt, ue_acc / q_total, m_t, dt);
+    *spring = f;
+  } else {
+    const double cap = friction_law_.Coefficient(vt) * q_total;
+    const double kt = options_.tangential_stiffness_ratio * kn_total;
+    const double ct = 2.0 * zeta * std::sqrt(kt * m_t);
+    const double fs = contact::ReturnMap(*spring, vt * dt, kt, cap).force;
+    f = std::clamp(fs - ct * vt, -cap, cap);
+    *spring = fs;
+  }
   friction_work_ -= f * vt * half;
   for (int k = 0; k < npts; ++k) {
     if (!(q[k] > 0)) continue;
@@ -470,8 +484,7 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
     outer_force_[j] = inner_force_[j] = 0.0;
     RaceContacts(j, profiles_[j], directions_[j], f, kFrictionSlots * j);
     if (f < 1.0)
-      RaceContacts(
-          j, intact_profiles_[j], intact_directions_[j], 1.0 - f, kFrictionSlots * j + 4);
+      RaceContacts(j, intact_profiles_[j], intact_directions_[j], 1.0 - f, kFrictionSlots * j + 4);
     CageContacts(j);
   }
   potential_ = step_potential_;

@@ -26,7 +26,9 @@
 //  - every contact: normal damping (fraction of critical of the contact's two-body oscillator:
 //    reduced mass of the roller and the counter body), friction by the contact module's law
 //    (sim/contact/friction.h: mu = mu_d + (mu_s - mu_d) exp(-decay |v|), a stick spring capped
-//    at mu Q) plus a damper on the stick spring.
+//    at mu Q) plus a damper on the stick spring; with friction.model = "ehl" the race contacts
+//    take the lubricant traction curve of their slide-to-roll ratio instead
+//    (sim/contact/traction.h).
 // Time integration: central differences (rigid_body.h), inside Step().
 // Energies: StoredEnergy() = contact potentials + the rigid bodies' kinetic energy,
 // DissipatedEnergy() = friction + contact damping, ExternalWork() = radial load + shaft drive.

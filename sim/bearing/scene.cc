@@ -400,6 +400,11 @@ void ReadFriction(Section s, SceneFriction* f) {
   f->mu_static = s.Number("mu_static", 0.01, {0.0, 2.0});
   f->mu_dynamic = s.Number("mu_dynamic", 0.005, {0.0, 2.0});
   f->decay_s_m = s.Number("decay_s_m", 0.0, kNonNegative);
+  const std::string model = s.String("model", "coulomb");
+  if (!contact::ParseTractionModel(model, &f->model))
+    s.Fail("model", "expected \"coulomb\" or \"ehl\" (got \"" + model + "\")");
+  f->ehl.limiting_coefficient = s.Number("ehl_limit", 0.08, {0.0, 1.0, true, true});
+  f->ehl.slide_roll_scale = s.Number("ehl_slide_roll", 0.01, {0.0, 1.0, true, false});
   s.RejectUnknown();
   if (f->mu_dynamic > f->mu_static) s.Fail("mu_dynamic", "must not exceed mu_static");
 }
@@ -429,6 +434,7 @@ E Choice(Section& s, const std::string& key, E def, const NamedValue<E> (&table)
 void ReadModel(Section s,
                const SceneGeometry& g,
                const std::vector<Defect>& defects,
+               const SceneFriction& friction,
                SceneModel* model) {
   model->fidelity = Choice(s, "fidelity", Fidelity::kFe, kFidelityNames);
   model->adapter = Choice(s, "adapter", AdapterModel::kElastic, kAdapterModelNames);
@@ -440,6 +446,12 @@ void ReadModel(Section s,
              "defects." + std::to_string(i) +
                  ".length_mm is shorter than bearing.thickness_mm (a partial-length spall); "
                  "that needs model.fidelity = \"hybrid\"");
+  // The lubricant traction needs the contact's entrainment speed, which the rigid rollers have
+  // and the FE's node-to-surface contact does not.
+  if (model->fidelity == Fidelity::kFe && friction.model != contact::TractionModel::kCoulomb)
+    s.Fail("fidelity",
+           "friction.model = \"ehl\" needs model.fidelity = \"hybrid\" or \"lumped\" (the "
+           "full FE has Coulomb friction only)");
   s.RejectUnknown();
 }
 
@@ -665,7 +677,7 @@ Scene ParseScene(const std::string& toml_text,
   ReadOperation(top.Table("operation"), &scene.operation);
   ReadFriction(top.Table("friction"), &scene.friction);
   ReadDamping(top.Table("damping"), &scene.damping);
-  ReadModel(top.Table("model"), scene.geometry, scene.defects, &scene.model);
+  ReadModel(top.Table("model"), scene.geometry, scene.defects, scene.friction, &scene.model);
   ReadMesh(top.Table("mesh"), scene.model, scene.defects, &scene.mesh);
   ReadSensors(top, scene.geometry, &scene.sensors);
   ReadRun(top.Table("run"), &scene.run, &scene.outputs);

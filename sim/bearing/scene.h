@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/bearing.h"
+#include "sim/contact/traction.h"
 
 namespace spallkit::sim {
 
@@ -82,6 +83,10 @@ struct SceneFriction {
   double mu_static = 0.01;
   double mu_dynamic = 0.005;
   double decay_s_m = 0.0;  // mu = mu_d + (mu_s - mu_d) exp(-decay |v_rel|) (LS-DYNA DC)
+  // Roller-race contacts of the rigid-roller models (hybrid, lumped): Coulomb with the mu above,
+  // or the lubricant traction curve (sim/contact/traction.h); the cage pockets keep Coulomb.
+  contact::TractionModel model = contact::TractionModel::kCoulomb;
+  contact::EhlTraction ehl;
 };
 
 struct SceneDamping {

@@ -1,0 +1,359 @@
+#include "identify/validation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "core/constants.h"
+#include "core/error.h"
+#include "core/hdf5.h"
+#include "core/record_io.h"
+#include "dsp/diagnose.h"
+#include "dsp/envelope.h"
+#include "identify/count_fit.h"
+#include "sim/bearing/scene.h"
+
+namespace spallkit::identify {
+namespace {
+
+std::string Fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+// SplitMix64 (portable: the same noise with every standard library) and Box-Muller.
+class NormalStream {
+ public:
+  explicit NormalStream(std::uint64_t seed) : state_(seed) {}
+  double Next() {
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
+    double u1 = 0.0;
+    while (u1 <= 0.0) u1 = Uniform();
+    const double u2 = Uniform();
+    const double r = std::sqrt(-2.0 * std::log(u1));
+    spare_ = r * std::sin(2.0 * kPi * u2);
+    has_spare_ = true;
+    return r * std::cos(2.0 * kPi * u2);
+  }
+
+ private:
+  double Uniform() {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+  std::uint64_t state_;
+  double spare_ = 0.0;
+  bool has_spare_ = false;
+};
+
+// Mean power of x in [low, high] Hz (Parseval over the one-sided spectrum).
+double BandPower(const dsp::EnvelopeAnalyzer& a, double low_hz, double high_hz) {
+  const auto& s = a.spectrum();
+  const double n = a.size();
+  double p = 0.0;
+  for (size_t k = 1; k < s.size(); ++k) {
+    const double f = k * a.resolution_hz();
+    if (f >= low_hz && f <= high_hz) p += std::norm(s[k]);
+  }
+  return 2.0 * p / (n * n);
+}
+
+double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+}  // namespace
+
+bool ValidationOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!(skip_s >= 0 && std::isfinite(skip_s))) return fail("validation: skip_s must be >= 0");
+  if (snr_db.empty()) return fail("validation: give at least one SNR");
+  for (double s : snr_db)
+    if (std::isnan(s) || s == -std::numeric_limits<double>::infinity())
+      return fail("validation: an SNR must be a number or +inf");
+  return identify.IsValid(error);
+}
+
+std::vector<std::string> CaseFiles(const std::string& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) throw InputError(folder + ": not a folder");
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(folder, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("case-", 0) == 0 && e.path().extension() == ".h5")
+      files.push_back(e.path().string());
+  }
+  if (files.empty())
+    throw InputError(folder + ": no case-*.h5 files (a `spall dataset run` folder)");
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+ValidationReport ValidateOnFiles(const std::vector<std::string>& files,
+                                 const ValidationOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError(error);
+  ValidationReport report;
+  for (size_t f = 0; f < files.size(); ++f) {
+    const std::string& path = files[f];
+    const auto text = h5::File::OpenReadOnly(path).ReadStringAttribute("/", "scene");
+    if (!text) throw InputError(path + ": no `scene` attribute (not a spall simulate output)");
+    const sim::Scene scene = sim::ParseScene(*text, path + ":scene");
+    RecordOptions ro;
+    ro.channel = options.channel;
+    Record clean = ReadRecord(path, ro);
+    const size_t skip = static_cast<size_t>(std::llround(options.skip_s * clean.sample_rate_hz));
+    if (skip + dsp::EnvelopeAnalyzer::kMinSamples >= clean.samples.size())
+      throw InputError(path + ": record shorter than skip_s");
+    clean.samples.erase(clean.samples.begin(), clean.samples.begin() + skip);
+
+    const BearingGeometry& g = scene.geometry.bearing;
+    const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
+    dsp::DiagnoseOptions dopt;
+    dopt.threads = 1;
+    IdentifyOptions io = options.identify;
+    io.diametral_clearance_m = scene.geometry.diametral_clearance_m;
+    io.roller_length_m = scene.geometry.thickness_m;
+    if (options.give_load) io.radial_load_n = scene.operation.radial_load_n;
+
+    ValidatedRecord truth;
+    truth.file = path;
+    truth.true_count = static_cast<int>(scene.defects.size());
+    std::vector<int> rollers;
+    for (const auto& d : scene.defects) rollers.push_back(d.roller);
+    if (!rollers.empty()) {
+      const int r0 = *std::min_element(rollers.begin(), rollers.end());
+      for (int& r : rollers) r -= r0;
+      std::sort(rollers.begin(), rollers.end());
+      truth.true_slots = CanonicalSlots(rollers, g.num_elements);
+      truth.true_width_m = scene.defects.front().width_m;
+    }
+    truth.speed_rpm = shaft_hz * 60.0;
+    truth.load_n = scene.operation.radial_load_n;
+    truth.record_s = clean.duration_s();
+
+    // The clean record's band defines the SNR (the band the analysis would use on it).
+    const dsp::Diagnosis clean_d = dsp::Diagnose(clean, g, shaft_hz, dopt);
+    const dsp::EnvelopeAnalyzer analyzer(clean.samples, clean.sample_rate_hz);
+    const double band_power = BandPower(analyzer, clean_d.band.low_hz, clean_d.band.high_hz);
+    const double band_fraction = clean_d.band.width_hz() / (0.5 * clean.sample_rate_hz);
+
+    for (size_t s = 0; s < options.snr_db.size(); ++s) {
+      const double snr = options.snr_db[s];
+      Record noisy = clean;
+      if (std::isfinite(snr)) {
+        const double sigma = std::sqrt(band_power / std::pow(10.0, snr / 10.0) / band_fraction);
+        NormalStream noise(options.seed * 0x100000001b3ULL + f * 1000003ULL + s * 7919ULL);
+        for (double& x : noisy.samples) x += sigma * noise.Next();
+      }
+      ValidatedRecord r = truth;
+      r.snr_db = snr;
+      const double t0 = CpuSeconds();
+      const dsp::Diagnosis d =
+          std::isfinite(snr) ? dsp::Diagnose(noisy, g, shaft_hz, dopt) : clean_d;
+      const Identification id = Identify(noisy, g, shaft_hz, d, io);
+      r.cpu_s = CpuSeconds() - t0;
+      r.verdict = dsp::VerdictName(d.verdict);
+      r.count_stated = id.count_identifiable;
+      r.count = id.count;
+      r.probabilities = id.probabilities;
+      auto argmax = [](const std::vector<double>& p, int* k, double* v) {
+        if (p.empty()) return;
+        *k = static_cast<int>(std::max_element(p.begin(), p.end()) - p.begin());
+        *v = p[*k];
+      };
+      argmax(id.probabilities_cage, &r.count_cage, &r.p_cage);
+      argmax(id.probabilities_sidebands, &r.count_sidebands, &r.p_sidebands);
+      r.chi2_scale_cage = id.count_fit.chi2_scale;
+      r.chi2_scale_sidebands = id.count_fit.chi2_scale_sidebands;
+      r.log_evidence_cage = id.count_fit.log_evidence_cage;
+      r.log_evidence_sidebands = id.count_fit.log_evidence_sidebands;
+      if (id.count_identifiable) r.count_probability = id.probabilities[id.count];
+      if (id.count_identifiable && id.count == r.true_count) {
+        std::vector<int> slots;
+        for (double p : id.positions_deg)
+          slots.push_back(static_cast<int>(std::lround(p * g.num_elements / 360.0)));
+        const std::vector<int> stated = CanonicalSlots(slots, g.num_elements);
+        r.positions_right = stated == r.true_slots;
+        std::vector<int> mirror;
+        for (int t : r.true_slots) mirror.push_back((g.num_elements - t) % g.num_elements);
+        std::sort(mirror.begin(), mirror.end());
+        r.positions_mirrored =
+            !r.positions_right && stated == CanonicalSlots(mirror, g.num_elements);
+      }
+      r.width_stated = id.width_identifiable;
+      r.width_m = id.width_m;
+      r.width_low_m = id.width_low_m;
+      r.width_high_m = id.width_high_m;
+      if (id.width_fit.usable) {
+        r.delay_s = id.width_fit.best.delay_s;
+        r.delay_low_s = id.width_fit.delay_low_s;
+        r.delay_high_s = id.width_fit.delay_high_s;
+        r.delay_significance = id.width_fit.delay_power_significance;
+      }
+      if (r.true_count > 0 && id.spin_hz > 0)
+        r.true_delay_s = 2.0 * std::asin(std::min(1.0, r.true_width_m / g.element_diameter_m)) /
+                         (2.0 * kPi * id.spin_hz);
+      for (size_t i = 0; i < id.reasons.size(); ++i) {
+        if (i) r.reasons += "; ";
+        r.reasons += id.reasons[i];
+      }
+      report.records.push_back(std::move(r));
+    }
+  }
+  return report;
+}
+
+std::string ValidationReport::Summary() const {
+  std::map<double, std::vector<const ValidatedRecord*>> by_snr;
+  for (const auto& r : records) by_snr[r.snr_db].push_back(&r);
+  std::ostringstream os;
+  for (auto it = by_snr.rbegin(); it != by_snr.rend(); ++it) {
+    const auto& rs = it->second;
+    os << "SNR " << (std::isfinite(it->first) ? Fmt("%g dB", it->first) : "clean") << ": "
+       << rs.size() << " records\n";
+    int max_true = 0, max_stated = 0;
+    for (const auto* r : rs) {
+      max_true = std::max(max_true, r->true_count);
+      if (r->count_stated) max_stated = std::max(max_stated, r->count);
+    }
+    max_stated = std::max(max_stated, max_true);
+    os << "  count confusion (rows truth, columns stated):\n    truth  refused";
+    for (int k = 0; k <= max_stated; ++k) os << Fmt("%6.0f", k);
+    os << "\n";
+    int spalled = 0, right = 0, wrong = 0, refused = 0, positions = 0;
+    for (int t = 0; t <= max_true; ++t) {
+      std::vector<int> row(max_stated + 1, 0);
+      int ref = 0, n = 0;
+      for (const auto* r : rs) {
+        if (r->true_count != t) continue;
+        ++n;
+        if (!r->count_stated) {
+          ++ref;
+        } else {
+          ++row[r->count];
+        }
+        if (t > 0) {
+          ++spalled;
+          if (!r->count_stated)
+            ++refused;
+          else if (r->count == t)
+            ++right, positions += r->positions_right;
+          else
+            ++wrong;
+        }
+      }
+      if (n == 0) continue;
+      os << Fmt("    %5.0f", t) << Fmt("  %7.0f", ref);
+      for (int v : row) os << Fmt("%6.0f", v);
+      os << "\n";
+    }
+    int healthy_stated = 0;
+    for (const auto* r : rs) healthy_stated += r->true_count == 0 && r->count_stated;
+    os << "  spalled records: " << spalled << "; count right " << right << " (positions right "
+       << positions << "), wrong " << wrong << ", refused " << refused
+       << "; healthy records given a count: " << healthy_stated << "\n";
+    // Reliability: stated P(count) against the fraction right.
+    const double edges[] = {0.5, 0.8, 0.95, 0.99, 1.0000001};
+    os << "  reliability of stated counts (P bin: stated, right, mean P):";
+    for (int b = 0; b + 1 < 5; ++b) {
+      int n = 0, ok = 0;
+      double p = 0.0;
+      for (const auto* r : rs)
+        if (r->count_stated && r->count_probability >= edges[b] &&
+            r->count_probability < edges[b + 1])
+          ++n, ok += r->count == r->true_count, p += r->count_probability;
+      if (n)
+        os << Fmt(" [%.2f", edges[b]) << Fmt("-%.2f): ", std::min(1.0, edges[b + 1])) << n << ", "
+           << ok << ", " << Fmt("%.3f", p / n) << ";";
+    }
+    os << "\n";
+    // Width.
+    std::vector<double> errors;
+    int stated = 0, within = 0, covered = 0, with_spall = 0;
+    for (const auto* r : rs) {
+      if (r->true_count == 0) continue;
+      ++with_spall;
+      if (!r->width_stated) continue;
+      ++stated;
+      const double e = std::abs(r->width_m - r->true_width_m) / r->true_width_m;
+      errors.push_back(e);
+      within += e <= 0.15;
+      covered += r->width_low_m <= r->true_width_m && r->true_width_m <= r->width_high_m;
+    }
+    os << "  width stated on " << stated << " of " << with_spall << " spalled records";
+    if (stated) {
+      std::sort(errors.begin(), errors.end());
+      const double median = errors[errors.size() / 2];
+      const double p90 = errors[std::min(errors.size() - 1, (errors.size() * 9) / 10)];
+      os << ": within 15 % " << within << ", 90 % interval covers the truth " << covered
+         << ", relative error median " << Fmt("%.1f %%", 100 * median) << ", 90th percentile "
+         << Fmt("%.1f %%", 100 * p90);
+    }
+    os << "\n";
+    double cpu = 0.0, secs = 0.0;
+    for (const auto* r : rs) cpu += r->cpu_s, secs += r->record_s;
+    os << "  CPU (diagnosis + identification, one thread): "
+       << Fmt("%.2f s per record second\n", secs > 0 ? cpu / secs : 0.0);
+  }
+  return os.str();
+}
+
+std::string ValidationReport::ToCsv() const {
+  std::ostringstream os;
+  os << "file,snr_db,true_count,true_slots,true_width_mm,speed_rpm,load_n,verdict,count_stated,"
+        "count,count_probability,p_true_count,count_cage,p_cage,count_sidebands,p_sidebands,"
+        "chi2_scale_cage,chi2_scale_sidebands,positions_right,positions_mirrored,width_stated,"
+        "width_mm,width_low_mm,"
+        "width_high_mm,true_delay_ms,delay_ms,delay_low_ms,delay_high_ms,delay_significance,cpu_s,"
+        "log_evidence_cage,log_evidence_sidebands,reasons\n";
+  auto joined = [](const std::vector<double>& v) {
+    std::string out;
+    for (size_t i = 0; i < v.size(); ++i) {
+      if (i) out += ';';
+      out += Fmt("%.6g", v[i]);
+    }
+    return out;
+  };
+  for (const auto& r : records) {
+    std::string slots;
+    for (size_t i = 0; i < r.true_slots.size(); ++i) {
+      if (i) slots += ';';
+      slots += std::to_string(r.true_slots[i]);
+    }
+    std::string reasons = r.reasons;
+    std::replace(reasons.begin(), reasons.end(), '"', '\'');
+    const double p_true = r.true_count < static_cast<int>(r.probabilities.size())
+                              ? r.probabilities[r.true_count]
+                              : 0.0;
+    os << r.file << "," << (std::isfinite(r.snr_db) ? Fmt("%g", r.snr_db) : "inf") << ","
+       << r.true_count << "," << slots << "," << Fmt("%.4f", r.true_width_m * 1e3) << ","
+       << Fmt("%.1f", r.speed_rpm) << "," << Fmt("%.0f", r.load_n) << "," << r.verdict << ","
+       << r.count_stated << "," << r.count << "," << Fmt("%.4g", r.count_probability) << ","
+       << Fmt("%.4g", p_true) << "," << r.count_cage << "," << Fmt("%.4g", r.p_cage) << ","
+       << r.count_sidebands << "," << Fmt("%.4g", r.p_sidebands) << ","
+       << Fmt("%.3g", r.chi2_scale_cage) << "," << Fmt("%.3g", r.chi2_scale_sidebands) << ","
+       << r.positions_right << "," << r.positions_mirrored << "," << r.width_stated << ","
+       << Fmt("%.4f", r.width_m * 1e3) << "," << Fmt("%.4f", r.width_low_m * 1e3) << ","
+       << Fmt("%.4f", r.width_high_m * 1e3) << "," << Fmt("%.4f", r.true_delay_s * 1e3) << ","
+       << Fmt("%.4f", r.delay_s * 1e3) << "," << Fmt("%.4f", r.delay_low_s * 1e3) << ","
+       << Fmt("%.4f", r.delay_high_s * 1e3) << "," << Fmt("%.3g", r.delay_significance) << ","
+       << Fmt("%.3f", r.cpu_s) << "," << joined(r.log_evidence_cage) << ","
+       << joined(r.log_evidence_sidebands) << ",\"" << reasons << "\"\n";
+  }
+  return os.str();
+}
+
+}  // namespace spallkit::identify
