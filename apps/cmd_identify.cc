@@ -7,6 +7,7 @@
 
 #include "apps/bearing_options.h"
 #include "apps/command.h"
+#include "core/constants.h"
 #include "core/error.h"
 #include "core/record_io.h"
 #include "dsp/diagnose.h"
@@ -27,6 +28,8 @@ struct Opts {
   bool json = false;
   std::string plot_dir;
   int max_count = -1;
+  double sensor_angle_deg = 0.0;
+  CLI::Option* sensor_option = nullptr;
 };
 
 int Run(const Opts& o) {
@@ -50,6 +53,8 @@ int Run(const Opts& o) {
   identify::IdentifyOptions io;
   if (o.load_option && o.load_option->count() > 0) io.radial_load_n = o.load_n;
   if (o.max_count >= 0) io.count.max_count = o.max_count;
+  if (o.sensor_option && o.sensor_option->count() > 0)
+    io.count.sensor_angle_rad = o.sensor_angle_deg * kPi / 180.0;
   std::string error;
   if (!io.IsValid(&error)) throw InputError(error);
   dsp::DiagnoseOptions dopt;
@@ -86,6 +91,11 @@ spallkit::apps::Register reg(
       sub.add_option("--max-count",
                      o->max_count,
                      "largest number of defective rollers tried (default: every roller)");
+      o->sensor_option = sub.add_option(
+          "--sensor-angle-deg",
+          o->sensor_angle_deg,
+          "sensor direction from the load line, deg (0: on it; 90: horizontal under a "
+          "vertical load)");
       sub.add_flag("--json", o->json, "print one JSON object instead of the report");
       sub.add_option(
           "--plot-dir", o->plot_dir, "write cage_average.png, sidebands.png, delay.png there");

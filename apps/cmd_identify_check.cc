@@ -10,6 +10,7 @@
 
 #include "apps/command.h"
 #include "core/atomic_file.h"
+#include "core/constants.h"
 #include "core/error.h"
 #include "identify/validation.h"
 
@@ -23,6 +24,8 @@ struct Opts {
   unsigned long long seed = 1;
   bool no_load = false;
   std::string csv;
+  double sensor_angle_deg = 0.0;
+  CLI::Option* sensor_option = nullptr;
 };
 
 std::vector<double> ParseSnrList(const std::string& text) {
@@ -59,6 +62,8 @@ int Run(const Opts& o) {
   vo.snr_db = ParseSnrList(o.snr);
   vo.seed = o.seed;
   vo.give_load = !o.no_load;
+  if (o.sensor_option && o.sensor_option->count() > 0)
+    vo.identify.count.sensor_angle_rad = o.sensor_angle_deg * kPi / 180.0;
   std::string error;
   if (!vo.IsValid(&error)) throw InputError(error);
   std::vector<std::string> files;
@@ -89,6 +94,10 @@ spallkit::apps::Register reg(
                      "comma-separated SNRs in the clean record's diagnosis band, dB; inf = clean "
                      "(default inf)");
       sub.add_option("--seed", o->seed, "noise seed (default 1)");
+      o->sensor_option =
+          sub.add_option("--sensor-angle-deg",
+                         o->sensor_angle_deg,
+                         "the channel's direction from the load line, deg (as spall identify)");
       sub.add_flag("--no-load", o->no_load, "do not give Identify the scene's radial load");
       sub.add_option("--csv", o->csv, "write one row per record and SNR there");
       return [o] { return Run(*o); };

@@ -40,7 +40,7 @@ Case MakeCase(const std::vector<std::pair<int, double>>& slots_phases) {
 }
 
 void Run(benchmark::State& state, const Case& c) {
-  identify::IdentifyOptions o;
+  identify::IdentifyOptions o = identify::SignalModelOptions();
   o.radial_load_n = 10000.0;
   const BearingGeometry g = CatalogBearing("N205EM");
   int count = -1;
@@ -109,7 +109,7 @@ void BM_SyntheticCheck(benchmark::State& state) {
       const Record rec = identify::MakeSyntheticRecord(s);
       const BearingGeometry g = CatalogBearing("N205EM");
       const dsp::Diagnosis d = dsp::Diagnose(rec, g, s.shaft_hz);
-      identify::IdentifyOptions o;
+      identify::IdentifyOptions o = identify::SignalModelOptions();
       o.radial_load_n = s.radial_load_n;
       const identify::Identification id = identify::Identify(rec, g, s.shaft_hz, d, o);
       if (!id.count_identifiable) {

@@ -387,33 +387,6 @@ Verdict FirstDetectedVerdict(const std::vector<FamilyDetection>& ranked) {
   return Verdict::kHealthy;
 }
 
-// DiagnoseOptions::confirm_outer_race: the outer-race family is claimed only when its comb is
-// also significant on the cepstrum-pre-whitened record (varying compliance is deterministic).
-void ConfirmOuterRaceOnPrewhitened(const Record& record,
-                                   const BearingGeometry& bearing,
-                                   double shaft_hz,
-                                   const DiagnoseOptions& options,
-                                   Diagnosis* d) {
-  if (d->verdict != Verdict::kOuterRace || !options.confirm_outer_race || options.prewhiten) return;
-  DiagnoseOptions whitened = options;
-  whitened.prewhiten = true;
-  whitened.kurtogram_map = false;
-  const Diagnosis w = Diagnose(record, bearing, shaft_hz, whitened);
-  double p = 1.0;
-  for (const auto& det : w.faults)
-    if (det.component == FaultComponent::kOuterRace) p = det.p_value;
-  if (p <= options.false_alarm_probability) return;
-  for (auto& det : d->faults) {
-    if (det.component != FaultComponent::kOuterRace || !det.detected) continue;
-    det.detected = false;
-    det.reason =
-        "not claimed: the comb does not survive cepstrum pre-whitening (p = " + Fmt("%.2g", p) +
-        "): discrete lines at n Z f_c, the varying compliance of a healthy bearing (" + det.reason +
-        ")";
-  }
-  d->verdict = FirstDetectedVerdict(d->faults);
-}
-
 }  // namespace
 
 namespace {
@@ -723,6 +696,50 @@ void ExplainAndConclude(const DetectionContext& ctx,
   d->verdict = FirstDetectedVerdict(d->faults);
 }
 
+// DiagnoseOptions::confirm_outer_race: the outer-race family is claimed only when its comb is
+// also significant on the cepstrum-pre-whitened record (varying compliance is deterministic).
+// First on the chosen band (one transform of the record and one band SES), and only when it
+// fails there on a whole second analysis of the pre-whitened record (any candidate band).
+void ConfirmOuterRaceOnPrewhitened(const Record& record,
+                                   const BearingGeometry& bearing,
+                                   double shaft_hz,
+                                   const AnalysisSignal& signal,
+                                   double alpha_need,
+                                   const DetectionContext& ctx,
+                                   const DetectionOptions& dopt,
+                                   const DiagnoseOptions& options,
+                                   Diagnosis* d) {
+  if (d->verdict != Verdict::kOuterRace || !options.confirm_outer_race || options.prewhiten) return;
+  const FaultFamily& outer = d->families[static_cast<int>(FaultComponent::kOuterRace)];
+  EnvelopeAnalyzer whitened = EnvelopeAnalyzer::Prewhitened(signal.raw, d->sample_rate_hz);
+  const double df = whitened.resolution_hz();
+  const double max_alpha =
+      std::min(d->band.width_hz(), alpha_need + (options.floor_window_bins / 2 + 2) * df);
+  NormalizedSpectrum in_band = NormalizeBandSes(
+      whitened.SesPowerFast(d->band, max_alpha, nullptr), df, d->band.width_hz(), dopt);
+  in_band.envelope_mean = SquaredEnvelopeMean(whitened,
+                                              static_cast<int>(std::ceil(d->band.low_hz / df)),
+                                              static_cast<int>(std::ceil(d->band.high_hz / df)));
+  double p = DetectFamily(in_band, outer, ctx, dopt).p_value;
+  if (p > options.false_alarm_probability) {
+    DiagnoseOptions again = options;
+    again.prewhiten = true;
+    again.kurtogram_map = false;
+    for (const auto& det : Diagnose(record, bearing, shaft_hz, again).faults)
+      if (det.component == FaultComponent::kOuterRace) p = std::min(p, det.p_value);
+  }
+  if (p <= options.false_alarm_probability) return;
+  for (auto& det : d->faults) {
+    if (det.component != FaultComponent::kOuterRace || !det.detected) continue;
+    det.detected = false;
+    det.reason =
+        "not claimed: the comb does not survive cepstrum pre-whitening (p = " + Fmt("%.2g", p) +
+        "): discrete lines at n Z f_c, the varying compliance of a healthy bearing (" + det.reason +
+        ")";
+  }
+  d->verdict = FirstDetectedVerdict(d->faults);
+}
+
 }  // namespace
 
 Diagnosis Diagnose(const Record& record,
@@ -766,7 +783,8 @@ Diagnosis Diagnose(const Record& record,
 
   ExplainAndConclude(
       ctx, dopt, needs.duration_s, d.measured_shaft_hz.value_or(shaft_hz), options, &d);
-  ConfirmOuterRaceOnPrewhitened(record, bearing, shaft_hz, options, &d);
+  ConfirmOuterRaceOnPrewhitened(
+      record, bearing, shaft_hz, signal, needs.alpha_need, ctx, dopt, options, &d);
   return d;
 }
 

@@ -24,18 +24,31 @@ constexpr double kGhWeight[3] = {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0};
 
 // The hump at x smoothed by a Gaussian of std `smear` (which also stands for the bin width: its
 // lower bound is 0.3 bin widths, the std of a uniform bin being 0.29).
+// With `project`, `sensor` is the sensor's direction from the load line: an impact along the
+// roller's radius at psi reaches it with cos(psi - sensor), its squared envelope with cos^2 (a
+// horizontal sensor, sensor = 90 deg, sees no impact on the load line and most at the flanks).
 template <typename T>
-T Hump(const T& x, const T& p, const T& edge, const T& smear, const T& half, double /*bin_rad*/) {
+T Hump(const T& x,
+       const T& p,
+       const T& edge,
+       const T& smear,
+       const T& half,
+       double /*bin_rad*/,
+       double sensor,
+       bool project) {
   using std::cos;
   using std::exp;
   using std::log;
   const T cl = cos(half);
   T sum(0.0);
   for (int q = 0; q < 3; ++q) {
-    const T c = cos(x + smear * kGhNode[q]);
+    const T psi = x + smear * kGhNode[q];
+    const T c = cos(psi);
     if (c > cl) {
       const T log_q = T(10.0 / 9.0) * log((c - cl) / (T(1.0) - cl));  // ln of relative load
-      sum += kGhWeight[q] * exp(p * log_q) * (T(1.0) + edge * (T(1.0) - exp(log_q)));
+      const T projection = project ? cos(psi - sensor) : T(1.0);
+      sum += kGhWeight[q] * exp(p * log_q) * (T(1.0) + edge * (T(1.0) - exp(log_q))) * projection *
+             projection;
     }
   }
   return sum;
@@ -45,6 +58,8 @@ struct HumpResidual {
   const CageAverage* avg;
   std::vector<int> slots;
   int z;
+  double sensor;
+  bool project;
 
   template <typename T>
   bool operator()(T const* const* params, T* residuals) const {
@@ -58,7 +73,7 @@ struct HumpResidual {
       T model = floor;
       for (size_t k = 0; k < slots.size(); ++k) {
         const T x = T(avg->BinCenterRad(i) + 2.0 * kPi * slots[k] / z) - theta0;
-        model += amp[k] * Hump(x, shape[0], shape[3], shape[1], shape[2], bin);
+        model += amp[k] * Hump(x, shape[0], shape[3], shape[1], shape[2], bin, sensor, project);
       }
       residuals[i] = (T(avg->mean[i]) - model) / avg->sigma[i];
     }
@@ -171,8 +186,8 @@ HumpFit Refine(const CageAverage& avg, int z, const HumpFit& start, const CountF
   std::vector<double> amp = f.amplitudes;
   for (double& a : amp) a = std::max(a, 1e-12);
 
-  auto* cost =
-      new ceres::DynamicAutoDiffCostFunction<HumpResidual, 4>(new HumpResidual{&avg, f.slots, z});
+  auto* cost = new ceres::DynamicAutoDiffCostFunction<HumpResidual, 4>(
+      new HumpResidual{&avg, f.slots, z, f.shape.sensor_angle_rad, f.shape.sensor_projection});
   cost->AddParameterBlock(4);
   cost->AddParameterBlock(1);
   cost->AddParameterBlock(1);
@@ -321,6 +336,8 @@ bool CountFitOptions::IsValid(std::string* error) const {
   if (!(temperature_cage >= 1 && temperature_sidebands >= 1 && std::isfinite(temperature_cage) &&
         std::isfinite(temperature_sidebands)))
     return fail("count fit: temperatures must be finite and >= 1");
+  if (sensor_angle_rad && !(std::abs(*sensor_angle_rad) <= kPi))
+    return fail("count fit: sensor_angle_rad must be in [-pi, pi]");
   if (!(min_relative_amplitude >= 0 && min_relative_amplitude < 1))
     return fail("count fit: min_relative_amplitude must be in [0, 1)");
   return true;
@@ -332,7 +349,14 @@ int CountFit::MostProbable() const {
 }
 
 double SmoothedHump(double x, const HumpShape& shape, double bin_rad) {
-  return Hump(x, shape.exponent, shape.edge_gain, shape.smear_rad, shape.half_angle_rad, bin_rad);
+  return Hump(x,
+              shape.exponent,
+              shape.edge_gain,
+              shape.smear_rad,
+              shape.half_angle_rad,
+              bin_rad,
+              shape.sensor_angle_rad,
+              shape.sensor_projection);
 }
 
 std::vector<int> CanonicalSlots(const std::vector<int>& slots, int z) {
@@ -555,6 +579,8 @@ CountFit FitRollerCount(const CageAverage& average,
   HumpShape shape;
   shape.half_angle_fixed = half_fixed;
   shape.half_angle_rad = half_fixed ? o.load_zone_half_angle_rad : 70.0 * kPi / 180.0;
+  shape.sensor_angle_rad = o.sensor_angle_rad.value_or(0.0);
+  shape.sensor_projection = o.sensor_angle_rad.has_value();
   shape.smear_rad = std::min(0.05, o.max_smear_rad);
   if (kmax >= 1) {
     HumpFit best1;

@@ -8,9 +8,10 @@
 // s_k the cage slots of the defective rollers (roller s is 2 pi s / Z ahead of roller 0 in the
 // direction of rotation, so its hump comes 2 pi s / Z earlier in cage phase), a_k >= 0 their
 // strengths, b the floor, theta_0 the cage phase at which slot 0 crosses the load line.
-// H(x) = q^p (1 + beta (1 - q)) smoothed: q(x) the Harris-Jones relative load with half angle
-// psi_l (identify/load_zone.h; fixed when the record's load is given, else fitted in 20-100 deg),
-// p the exponent of the squared envelope's growth with load (fitted, 0.25..6), beta >= 0 (fitted,
+// H(x) = q^p (1 + beta (1 - q)) [cos^2(x - sensor angle)] smoothed: q(x) the Harris-Jones relative
+// load with half angle psi_l (identify/load_zone.h; fixed when the record's load is given, else
+// fitted in 20-100 deg), p the exponent of the squared envelope's growth with load (fitted,
+// 0.25..6), beta >= 0 (fitted,
 // <= 20) the extra strength of impacts near the load zone's edges (spallkit's simulated spalls
 // strike 2-3x harder at +/- 40 deg than on the load line: the roller falls further before the
 // lighter load catches it), smoothed by a Gaussian of std sigma_s (cage-speed jitter and the bin
@@ -43,6 +44,7 @@
 // lines), so the combined evidence is the sum of the two.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,13 +58,20 @@ struct CountFitOptions {
   int refine = 3;      // configurations per K refitted with Ceres (K <= exhaustive_max_count)
   int exhaustive_max_count = 3;
   int theta_grid_per_slot = 4;
-  double min_relative_amplitude = 0.1;
+  // 0.25: on the simulator's records, spalls also strike outside the load zone (humps of 10-20 %
+  // of the load-zone one) and must not count as rollers (docs/IDENTIFY.md, "Calibration").
+  double min_relative_amplitude = 0.25;
   double max_smear_rad = 0.15;  // upper bound of sigma_s (~8.6 deg)
   // Model tolerance: every bin's standard error is widened (in quadrature) by this fraction of the
   // average's range, every line's noise by this fraction of its harmonic's largest line. Details
   // below it (lumps of a few revolutions' impacts, a small cage-synchronous knock outside the load
   // zone) are not the humps' business and must not decide the count.
   double model_tolerance = 0.03;
+  // The sensor's direction from the load line (rad), when known: the humps are then weighted by
+  // cos^2(psi - this) (0: on the load line, a vertical accelerometer under a vertical load;
+  // pi/2: a horizontal one). Unset: no projection (the fitted exponent and edge gain absorb a
+  // sensor near the load line).
+  std::optional<double> sensor_angle_rad;
   // Half angle of the load zone (rad): > 0 fixes it (from the record's load), 0 fits it.
   double load_zone_half_angle_rad = 0.0;
   bool use_sidebands = true;  // feature B (when sidebands are given)
@@ -72,8 +81,8 @@ struct CountFitOptions {
   // hump shape and the sideband pattern miss details that grow with the number of lines), so the
   // temperatures are calibrated on simulated records of known count (docs/IDENTIFY.md,
   // "Calibration"): the values that maximise the mean log probability of the true count.
-  double temperature_cage = 12.0;
-  double temperature_sidebands = 50.0;
+  double temperature_cage = 30.0;
+  double temperature_sidebands = 80.0;
   // Feature B is evaluated only for configurations whose feature-A chi2 is within this of the
   // best (the others cannot matter; B is the costly part).
   double sideband_screen_chi2 = 60.0;
@@ -88,6 +97,8 @@ struct HumpShape {
   double smear_rad = 0.05;      // sigma_s
   double half_angle_rad = 1.2;  // psi_l
   bool half_angle_fixed = false;
+  double sensor_angle_rad = 0.0;  // fixed: CountFitOptions::sensor_angle_rad
+  bool sensor_projection = false;
 };
 
 // One fitted configuration.

@@ -48,11 +48,25 @@ bool IdentifyOptions::IsValid(std::string* error) const {
   if (!(width_band_min_half_width_hz > 0))
     return fail("identify: width_band_min_half_width_hz must be > 0");
   if (!(width_calibration_scale > 0)) return fail("identify: width calibration scale must be > 0");
+  if (!(width_calibration_relative_sd >= 0 && width_calibration_relative_sd < 0.5))
+    return fail("identify: width calibration scatter must be in [0, 0.5)");
+  if (width_max_count < 1) return fail("identify: width_max_count must be >= 1");
   if (!(min_delay_significance >= 0)) return fail("identify: min_delay_significance must be >= 0");
   if (!(max_entry_power_ratio > 0)) return fail("identify: max_entry_power_ratio must be > 0");
   if (!(max_width_relative_half_interval > 0))
     return fail("identify: max_width_relative_half_interval must be > 0");
   return count.IsValid(error) && width.IsValid(error);
+}
+
+IdentifyOptions SignalModelOptions() {
+  IdentifyOptions o;
+  o.count.temperature_cage = 1.0;
+  o.count.temperature_sidebands = 1.0;
+  o.count.min_relative_amplitude = 0.1;
+  o.width_calibration_scale = 1.0;
+  o.width_calibration_relative_sd = 0.0;
+  o.width_max_count = 1 << 20;
+  return o;
 }
 
 Identification Identify(const Record& record,
@@ -210,6 +224,13 @@ Identification Identify(const Record& record,
         "for entry events)";
     return finish();
   }
+  if (id.count > options.width_max_count) {
+    width_reason = "width: not identifiable (" + std::to_string(id.count) +
+                   " defective rollers: their impacts pass for each other's entry events; "
+                   "stated for at most " +
+                   std::to_string(options.width_max_count) + ")";
+    return finish();
+  }
   if (!(wo.max_delay_s > wo.min_delay_s)) {
     width_reason = "width: not identifiable (no delay range at this speed and sample rate)";
     return finish();
@@ -230,12 +251,13 @@ Identification Identify(const Record& record,
   const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
   id.width_fit = FitEntryExit(sew, fs, zone, block, wo);
   const WidthFit& wf = id.width_fit;
-  auto to_width = [&](double dt) {
-    return ChordOf(
-        (dt - options.width_calibration_offset_s) / options.width_calibration_scale, id.spin_hz, d);
+  auto to_width = [&](double dt, double scale) {
+    return ChordOf((dt - options.width_calibration_offset_s) / scale, id.spin_hz, d);
   };
+  const double scale = options.width_calibration_scale;
+  const double spread = 1.645 * options.width_calibration_relative_sd;  // 90 % of the scale
   const double dt_res = std::max(2.0 / fs, 2.0 * wf.best.rise_s);
-  id.width_resolution_m = to_width(dt_res);
+  id.width_resolution_m = to_width(dt_res, scale);
   std::string& why = width_reason;
   if (!wf.usable) {
     why = "width: not identifiable (" + wf.message + ")";
@@ -254,9 +276,9 @@ Identification Identify(const Record& record,
         "ring-down: the interval reaches below " +
         Fmt("%.2f", id.width_resolution_m * 1e3) + " mm)";
   } else {
-    id.width_m = to_width(wf.best.delay_s);
-    id.width_low_m = to_width(wf.delay_low_s);
-    id.width_high_m = to_width(wf.delay_high_s);
+    id.width_m = to_width(wf.best.delay_s, scale);
+    id.width_low_m = to_width(wf.delay_low_s, scale * (1.0 + spread));
+    id.width_high_m = to_width(wf.delay_high_s, scale * (1.0 - spread));
     const double half = 0.5 * (id.width_high_m - id.width_low_m);
     if (half > options.max_width_relative_half_interval * id.width_m) {
       why = "width: not identifiable (90 % interval " + Fmt("%.2f", id.width_low_m * 1e3) + "-" +
@@ -372,7 +394,8 @@ std::string Identification::ToJson(int indent) const {
     }
     fit["width_resolution_mm"] = width_resolution_m * 1e3;
     fit["width_calibration"] = {{"scale", options.width_calibration_scale},
-                                {"offset_ms", options.width_calibration_offset_s * 1e3}};
+                                {"offset_ms", options.width_calibration_offset_s * 1e3},
+                                {"relative_sd", options.width_calibration_relative_sd}};
   }
   j["fit"] = fit;
   return j.dump(indent);

@@ -50,10 +50,19 @@ struct IdentifyOptions {
   WidthFitOptions width;
   // Width band: Hann window centred on the diagnosis band, +/- max(its width, this) (Hz).
   double width_band_min_half_width_hz = 2000.0;
-  // Calibration of the measured delay against the geometric one, dt = scale dt_chord + offset
-  // (docs/IDENTIFY.md says how it was obtained).
-  double width_calibration_scale = 1.0;
+  // Calibration of the measured delay against the geometric one, dt = scale dt_chord + offset,
+  // with the scale's relative scatter (one standard deviation) between records, which widens the
+  // 90 % interval. Defaults: spallkit's simulator (lumped model, single spalled rollers,
+  // datasets/sweeps/identify-width.toml; docs/IDENTIFY.md, "Calibration"), where the measured
+  // event pair is the entry and the roller's landing inside the spall, not the exit. Records of
+  // the synthetic signal model (identify/synthetic_record.h) have scale 1, scatter 0.
+  double width_calibration_scale = 0.6;
   double width_calibration_offset_s = 0.0;
+  double width_calibration_relative_sd = 0.15;
+  // The width is stated only with at most this many defective rollers: with more, the other
+  // rollers' impacts pass for the second event (on the tuning set no width of a 2- or 3-roller
+  // record came within 15 %).
+  int width_max_count = 1;
   // Width reported when the second event's power is this many bootstrap standard deviations
   // above zero and the 90 % interval's half width is at most this fraction of the estimate.
   double min_delay_significance = 2.0;
@@ -64,6 +73,12 @@ struct IdentifyOptions {
 
   bool IsValid(std::string* error) const;
 };
+
+// The options calibrated for records of the synthetic signal model (identify/synthetic_record.h)
+// instead of spallkit's simulator: untempered evidence (the model is exact there), humps down to
+// 0.1 of the strongest counted (no unmodelled impacts outside the load zone), and the geometric
+// width relation (scale 1, no scatter).
+IdentifyOptions SignalModelOptions();
 
 struct Identification {
   // What the record supports; the reasons say why not, one line each.

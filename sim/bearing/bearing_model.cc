@@ -18,6 +18,10 @@ bool LumpedOptions::IsValid(std::string* error) const {
   if (!(fit_damping_ratio > 0)) return fail("lumped model: fit_damping_ratio must be > 0");
   if (!(time_step_safety > 0 && time_step_safety <= 1))
     return fail("lumped model: time_step_safety must be in (0, 1]");
+  if (!(sensor_response_s >= 0 && sensor_response_s <= 0.1))
+    return fail("lumped model: sensor_response_s must be in [0, 0.1]");
+  if (!(sensor_sample_hz >= 1e3 && sensor_sample_hz <= 1e6))
+    return fail("lumped model: sensor_sample_hz must be in [1e3, 1e6]");
   return true;
 }
 

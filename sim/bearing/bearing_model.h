@@ -32,6 +32,11 @@ struct LumpedOptions {
   double fit_damping_ratio = 0.7;
   // Stable-step safety on the roller contacts (the FE models use the solver's).
   double time_step_safety = 0.45;
+  // Sensor path: length of the FE housing's impulse responses the sensor channels convolve
+  // the rollers' force with (0: the sensor reads the rigid ring's motion times its static
+  // gain), and their sample rate.
+  double sensor_response_s = 8e-3;
+  double sensor_sample_hz = 100e3;
 
   bool IsValid(std::string* error) const;
 };

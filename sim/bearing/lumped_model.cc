@@ -15,10 +15,9 @@
 #include "sim/bearing/raceway_kernel.h"
 
 namespace spallkit::sim {
-namespace {
 
 // The scene whose housing is fitted: the hybrid model's housing mesh at the fit's size.
-Scene FitScene(const Scene& scene, const LumpedOptions& options) {
+Scene HousingFitScene(const Scene& scene, const LumpedOptions& options) {
   Scene s = scene;
   s.model.fidelity = Fidelity::kHybrid;
   s.mesh.size_m = s.mesh.contact_size_m = options.fit_mesh_size_m;
@@ -26,6 +25,29 @@ Scene FitScene(const Scene& scene, const LumpedOptions& options) {
   s.defects.clear();
   return s;
 }
+
+double SensorPathVelocity(const HousingFit& fit,
+                          int channel,
+                          const std::vector<double>& f_down,
+                          const std::vector<double>& f_x,
+                          long newest) {
+  double v = 0.0;
+  const std::vector<double>* forces[2] = {&f_down, &f_x};
+  for (int p = 0; p < 2; ++p) {
+    const std::vector<double>& g = fit.sensor_response[channel][p];
+    const std::vector<double>& f = *forces[p];
+    const long n = static_cast<long>(g.size());
+    // g[i] pairs with the force i samples back: f[newest - i], wrapped.
+    long k = newest;
+    for (long i = 0; i < n; ++i) {
+      v += g[i] * f[k];
+      k = k == 0 ? n - 1 : k - 1;
+    }
+  }
+  return v;
+}
+
+namespace {
 
 std::string CacheKey(const Scene& scene, const LumpedOptions& o) {
   std::ostringstream os;
@@ -39,7 +61,7 @@ std::string CacheKey(const Scene& scene, const LumpedOptions& o) {
      << scene.operation.radial_load_n << ' ' << scene.damping.ratio << ' '
      << scene.damping.reference_hz << ' ' << scene.mesh.adapter_size_m << ' '
      << AdapterModelName(scene.model.adapter) << ' ' << o.fit_mesh_size_m << ' ' << o.fit_duration_s
-     << ' ' << o.fit_damping_ratio;
+     << ' ' << o.fit_damping_ratio << ' ' << o.sensor_response_s << ' ' << o.sensor_sample_hz;
   for (const Material* m : {&scene.materials.outer_ring, &scene.materials.adapter})
     os << ' ' << m->youngs_modulus_pa << ' ' << m->poisson_ratio << ' ' << m->density_kg_m3;
   for (const Sensor& s : scene.sensors) {
@@ -93,10 +115,81 @@ class RacewayLoad : public solver::ForceContributor {
   double ramp_;
 };
 
+// A force (fx, fy) (1 - cos(pi t / h)) / 2 on the raceway at `angle` for 0 < t < 2h: the
+// impulse of (fx, fy) held for h, centred at t = h, smooth (band-limited to about 1 / h).
+class RacewayPulse : public solver::ForceContributor {
+ public:
+  RacewayPulse(const RacewayKernel& kernel, double angle, double fx, double fy, double h)
+      : kernel_(kernel), angle_(angle), fx_(fx), fy_(fy), h_(h) {}
+  void AddForces(fe::NodalState& state, double t, double /*dt*/) override {
+    if (!(t > 0 && t < 2.0 * h_)) return;
+    const double s = 0.5 - 0.5 * std::cos(kPi * t / h_);
+    kernel_.Spread(state, angle_, s * fx_, s * fy_);
+  }
+  std::string Name() const override { return "raceway_pulse"; }
+
+ private:
+  const RacewayKernel& kernel_;
+  double angle_, fx_, fy_, h_;
+};
+
+// The sensor path's impulse responses (see HousingFit::sensor_response).
+void ProbeSensorResponse(const Scene& fs, const BearingModelOptions& options, HousingFit* fit) {
+  const LumpedOptions& lo = options.lumped;
+  BearingModelOptions o = options;
+  o.housing_only = true;
+  constexpr double kForce = 1000.0;
+  const double h = 1.0 / lo.sensor_sample_hz, load_line = -0.5 * kPi;
+  const int n = std::max(8, static_cast<int>(std::lround(lo.sensor_response_s / h)));
+  for (int p = 0; p < 2; ++p) {
+    FeBearingModel model(fs, o);
+    const BearingMesh& mesh = model.bearing_mesh();
+    const auto& channels = model.sensor_channels();
+    fit->sensor_response.resize(channels.size(), std::vector<std::vector<double>>(2));
+    RacewayKernel kernel(mesh.mesh,
+                         "outer_ring.raceway",
+                         mesh.outer_raceway_radius_m,
+                         options.hybrid.spread_half_width_m);
+    RacewayPulse pulse(kernel, load_line, p == 1 ? kForce : 0.0, p == 0 ? -kForce : 0.0, h);
+    solver::ExplicitSolver& solver = model.solver();
+    solver.AddContributor(&pulse);
+    // The mean velocity over each sample, (u(t_i + h) - u(t_i)) / h, t_i = i h + h / 2 (the
+    // pulse is centred half a sample later than a force held over [0, h)): with the smooth
+    // pulse, the mesh's modes far above the sample rate stay out of the response (a box pulse
+    // or a point velocity would alias them).
+    std::vector<double> u_old(channels.size(), 0.0);
+    for (int i = 0; i < n; ++i) {
+      solver.Run((i + 1.5) * h);
+      const fe::NodalState& st = solver.state();
+      for (size_t c = 0; c < channels.size(); ++c) {
+        const int node = channels[c].node;
+        const double u =
+            channels[c].direction == 'x' ? st.x[node] - st.x0[node] : st.y[node] - st.y0[node];
+        fit->sensor_response[c][p].push_back((u - u_old[c]) / h / kForce);
+        u_old[c] = u;
+      }
+    }
+  }
+  // Taper the last quarter (half Hann) and remove the sum with the taper's shape: a constant
+  // force then gives no velocity, as the housing at rest under it.
+  const int tail = n / 4;
+  std::vector<double> w(n, 1.0);
+  for (int i = n - tail; i < n; ++i)
+    w[i] = 0.5 + 0.5 * std::cos(kPi * (i - (n - tail) + 1) / (tail + 1));
+  double w_sum = 0.0;
+  for (double x : w) w_sum += x;
+  for (auto& channel : fit->sensor_response)
+    for (std::vector<double>& g : channel) {
+      double sum = 0.0;
+      for (int i = 0; i < n; ++i) sum += (g[i] *= w[i]);
+      for (int i = 0; i < n; ++i) g[i] -= sum * w[i] / w_sum;
+    }
+}
+
 HousingFit ComputeHousingFit(const Scene& scene, const BearingModelOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const LumpedOptions& lo = options.lumped;
-  const Scene fs = FitScene(scene, lo);
+  const Scene fs = HousingFitScene(scene, lo);
   HousingFit fit;
   const double load = std::max(scene.operation.radial_load_n, 1000.0);
   // Case 0: load along +x; case 1: along -y (the scene's load direction).
@@ -154,6 +247,7 @@ HousingFit ComputeHousingFit(const Scene& scene, const BearingModelOptions& opti
   const auto& channels = probe.sensor_channels();
   for (size_t k = 0; k < channels.size(); ++k)
     fit.sensor_gain.push_back(channel_disp[channels[k].direction == 'x' ? 0 : 1][k]);
+  if (lo.sensor_response_s > 0) ProbeSensorResponse(fs, options, &fit);
   fit.fit_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return fit;
 }
@@ -197,7 +291,7 @@ void RigidOuterRace::Gap(double qx, double qy, double rad, RacePoint* p) const {
 
 LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOptions& options)
     : BearingModel(scene, options),
-      housing_(MeshBearingHousing(FitScene(scene, options.lumped))),
+      housing_(MeshBearingHousing(HousingFitScene(scene, options.lumped))),
       fit_(FitHousing(scene, options)),
       rollers_(scene,
                housing_,
@@ -235,6 +329,11 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
     dt_stable_ =
         options_.lumped.time_step_safety * 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta);
   }
+  if (!fit_.sensor_response.empty()) {
+    for (auto& h : history_) h.assign(fit_.sensor_response[0][0].size(), 0.0);
+    sensor_prev_.assign(channels_.size(), 0.0);
+    sensor_last_.assign(channels_.size(), 0.0);
+  }
   for (int d = 0; d < 2; ++d) {
     const double omega = std::sqrt(fit_.stiffness[d] / fit_.mass[d]);
     const double zeta = fit_.damping[d] / (2.0 * fit_.mass[d] * omega);
@@ -253,6 +352,7 @@ void LumpedBearingModel::Step() {
   double* u[2] = {&race_.x_, &race_.y_};
   double* v[2] = {&race_.vx_, &race_.vy_};
   const double f_rollers[2] = {race_.fx_, race_.fy_};
+  spring_half_ = damping_half_ = 0.0;
   for (int d = 0; d < 2; ++d) {
     const double spring = -fit_.stiffness[d] * *u[d];
     const double damper = -fit_.damping[d] * *v[d];
@@ -263,12 +363,36 @@ void LumpedBearingModel::Step() {
     const double v_mid = 0.5 * (v_old + *v[d]);
     spring_energy_ -= spring * v_mid * dt_avg;
     housing_damping_work_ -= damper * v_mid * dt_avg;
+    spring_half_ -= 0.5 * spring * *v[d] * dt_avg;
+    damping_half_ -= 0.5 * damper * *v[d] * dt_avg;
     *u[d] += dt * *v[d];
   }
+  if (!fit_.sensor_response.empty()) SensorSample(-f_rollers[1], f_rollers[0], dt);
   dt_prev_ = dt;
   dt_ = dt;
   time_ += dt;
   ++step_;
+}
+
+void LumpedBearingModel::SensorSample(double f_down, double f_x, double dt) {
+  const double h = 1.0 / options_.lumped.sensor_sample_hz;
+  sample_force_[0] += f_down * dt, sample_force_[1] += f_x * dt;
+  sample_time_ += dt;
+  if (sample_time_ < h) return;
+  // A sample is complete: its mean force joins the history, each channel's velocity is the
+  // convolution of the history with its responses.
+  const long n = static_cast<long>(history_[0].size());
+  history_pos_ = (history_pos_ + 1) % n;
+  for (int p = 0; p < 2; ++p) {
+    history_[p][history_pos_] = sample_force_[p] / sample_time_;
+    sample_force_[p] = 0.0;
+  }
+  sample_time_ = 0.0;
+  for (size_t c = 0; c < sensor_last_.size(); ++c) {
+    sensor_prev_[c] = sensor_last_[c];
+    sensor_last_[c] =
+        SensorPathVelocity(fit_, static_cast<int>(c), history_[0], history_[1], history_pos_);
+  }
 }
 
 solver::SolverSummary LumpedBearingModel::Run(double end_time) {
@@ -297,10 +421,10 @@ solver::Energies LumpedBearingModel::energies() const {
   e.kinetic = rollers_.CentredKineticEnergy();
   for (int d = 0; d < 2; ++d)
     e.kinetic += 0.5 * fit_.mass[d] * ring_v_old_[d] * (d == 0 ? race_.vx_ : race_.vy_);
-  e.internal = spring_energy_;
+  e.internal = spring_energy_ - spring_half_;
   e.contact = rollers_.ContactEnergy();
   e.friction = rollers_.FrictionWork();
-  e.damping = rollers_.DampingWork() + housing_damping_work_;
+  e.damping = rollers_.DampingWork() + housing_damping_work_ - damping_half_;
   e.external = e.external_loads = rollers_.ExternalWork();
   return e;
 }
@@ -322,7 +446,11 @@ BodyMotion LumpedBearingModel::InnerRingMotion() const {
 
 double LumpedBearingModel::SensorVelocity(int channel) const {
   const SensorChannel& ch = channels_[channel];
-  return fit_.sensor_gain[channel] * (ch.direction == 'x' ? race_.vx_ : race_.vy_);
+  if (fit_.sensor_response.empty())
+    return fit_.sensor_gain[channel] * (ch.direction == 'x' ? race_.vx_ : race_.vy_);
+  // Between the last two samples (one sample of delay: a continuous velocity to differentiate).
+  const double s = sample_time_ * options_.lumped.sensor_sample_hz;
+  return sensor_prev_[channel] + s * (sensor_last_[channel] - sensor_prev_[channel]);
 }
 
 std::string LumpedBearingModel::SaveState() const {
@@ -339,6 +467,10 @@ std::string LumpedBearingModel::SaveState() const {
     out.Put(x);
   out.Put<std::int64_t>(step_);
   out.Put<std::uint8_t>(started_ ? 1 : 0);
+  for (double x : {sample_force_[0], sample_force_[1], sample_time_}) out.Put(x);
+  out.Put<std::int64_t>(history_pos_);
+  for (const auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_})
+    out.PutVector(*v);
   out.PutBytes(rollers_.SaveState());
   return out.Take();
 }
@@ -357,6 +489,13 @@ void LumpedBearingModel::LoadState(const std::string& bytes) {
     *x = in.Get<double>();
   step_ = static_cast<long>(in.Get<std::int64_t>());
   started_ = in.Get<std::uint8_t>() != 0;
+  for (double* x : {&sample_force_[0], &sample_force_[1], &sample_time_}) *x = in.Get<double>();
+  history_pos_ = static_cast<long>(in.Get<std::int64_t>());
+  for (auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_})
+    in.GetVectorInto(v, "lumped model sensor state");
+  if (history_pos_ < 0 ||
+      (history_pos_ > 0 && history_pos_ >= static_cast<long>(history_[0].size())))
+    throw InputError("lumped model state: bad sensor history position");
   rollers_.LoadState(in.GetBytes());
 }
 
@@ -376,9 +515,14 @@ std::string LumpedBearingModel::Describe() const {
   for (int d = 0; d < 2; ++d)
     os << (d == 0 ? " x: " : "; y: ") << fit_.stiffness[d] * 1e-9 << " kN/um, " << fit_.mass[d]
        << " kg, " << fit_.Frequency(d) << " Hz";
-  for (size_t c = 0; c < channels_.size(); ++c)
-    os << "\nsensor " << channels_[c].sensor << " " << channels_[c].direction << ": gain "
-       << fit_.sensor_gain[c] << " of the ring's motion";
+  for (size_t c = 0; c < channels_.size(); ++c) {
+    os << "\nsensor " << channels_[c].sensor << " " << channels_[c].direction << ": ";
+    if (fit_.sensor_response.empty())
+      os << "gain " << fit_.sensor_gain[c] << " of the ring's motion";
+    else
+      os << "FE housing impulse responses, " << fit_.sensor_response[c][0].size() << " samples at "
+         << options_.lumped.sensor_sample_hz * 1e-3 << " kHz";
+  }
   return os.str();
 }
 

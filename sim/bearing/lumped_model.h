@@ -1,9 +1,9 @@
 // The lumped bearing model (DESIGN.md "Fidelity ladder", the rung below the hybrid): the
 // hybrid's rigid rollers, cage and inner ring (roller_contacts.h: exact spall profiles, Palmgren
 // line contact, traction, pocket contact) on a RIGID outer ring carried by the housing's
-// stiffness, with the sensors read from that ring through fitted gains. No mesh is stepped, so
-// the time step is the roller contacts' and a simulated second costs about a second of wall
-// time (docs/PERFORMANCE.md, "Fidelity ladder").
+// stiffness, with the sensors from the FE housing's impulse responses. No mesh is stepped, so
+// the time step is the roller contacts' and a simulated second costs a few seconds of one core
+// (docs/PERFORMANCE.md, "Fidelity ladder").
 //
 // Housing fit (FitHousing, once per geometry and cached in the process): the scene's FE housing
 // (outer ring tied to the elastic or rigid adapter, the hybrid model's mesh at
@@ -16,10 +16,16 @@
 //    fundamental radial mode in that direction, frequency sqrt(K_d / M_d));
 //  - damping C_d = 4 pi zeta f_ref M_d, the scene's mass-proportional damping on that mass;
 //  - sensor gain g_c = u_c / c_d of each channel in its direction's load case.
-// The ring moves as two independent oscillators (x and y) under the roller reactions; channel c
-// reads g_c times the ring's velocity along its direction. Limits (docs/BEARING_MODEL.md,
-// "The lumped model"): one housing mode per direction (the hybrid's sensor carries many), no
-// local raceway deflection under a roller, no ring rotation.
+// The ring moves as two independent oscillators (x and y) under the roller reactions.
+// Sensor path: the FE housing (the scene's damping) is hit once per geometry by a force held for
+// one sample on the raceway at the load line, along -y and along +x; each channel's velocity
+// records are its impulse responses, and in the run the channel reads the convolution of the
+// rollers' resultant force on the ring (its -y and +x parts, averaged over each sample) with
+// them: the housing's modes and wave paths as the FE model has them, linear, one way (they do
+// not act back on the rollers). With sensor_response_s = 0 channel c reads g_c times the ring's
+// velocity. Limits (docs/BEARING_MODEL.md, "The lumped model"): the sensor sees the resultant
+// force as if it acted at the load line; no local raceway deflection under a roller in the
+// contacts; no ring rotation.
 #pragma once
 
 #include <string>
@@ -35,6 +41,11 @@ struct HousingFit {
   double mass[2] = {0, 0};          // M_x, M_y (kg)
   double damping[2] = {0, 0};       // C_x, C_y (N s/m)
   std::vector<double> sensor_gain;  // per sensor channel (scene order)
+  // Sensor path (sensor_response_s > 0): response[c][p][i], channel c's mean velocity along its
+  // axis over [i h, (i + 1) h] (m/s) per newton of a force held for one sample h = 1 /
+  // sensor_sample_hz on the raceway at the load line, along -y (p = 0) or +x (p = 1); tapered
+  // over its last quarter and corrected to sum to zero (no velocity under a constant force).
+  std::vector<std::vector<std::vector<double>>> sensor_response;
   // Relative change of c_d over the last fifth of the relaxation (0: fully at rest).
   double residual_motion = 0.0;
   double fit_wall_s = 0.0;        // wall time of the fit (0 when it came from the cache)
@@ -44,6 +55,16 @@ struct HousingFit {
 // Fits the housing of `scene` (see above); cached by the scene's housing geometry, materials,
 // damping, adapter, sensors and the options. Throws InputError.
 HousingFit FitHousing(const Scene& scene, const BearingModelOptions& options);
+// The scene whose FE housing the fit runs (the hybrid's housing mesh at fit_mesh_size_m).
+Scene HousingFitScene(const Scene& scene, const LumpedOptions& options);
+// Channel c's sensor-path velocity (m/s) after the newest force sample: the convolution of the
+// force histories (N, mean over each sample; along -y and +x; ring buffers of the responses'
+// length with the newest sample at `newest`) with the channel's impulse responses.
+double SensorPathVelocity(const HousingFit& fit,
+                          int channel,
+                          const std::vector<double>& f_down,
+                          const std::vector<double>& f_x,
+                          long newest);
 
 // The outer ring as one rigid circle of the raceway radius, centre (x, y), no rotation.
 class RigidOuterRace : public OuterRace {
@@ -94,6 +115,9 @@ class LumpedBearingModel : public BearingModel {
 
  private:
   void Step();
+  // Adds the step's force to the sensor sample being filled; completes it every 1 /
+  // sensor_sample_hz.
+  void SensorSample(double f_down, double f_x, double dt);
 
   BearingMesh housing_;  // the fit's housing mesh: geometry only, not stepped
   HousingFit fit_;
@@ -107,6 +131,16 @@ class LumpedBearingModel : public BearingModel {
   double spring_energy_ = 0, housing_damping_work_ = 0;
   bool started_ = false;
   double ring_v_old_[2] = {0, 0};  // ring velocity at n-1/2 of the last step (energy at t^n)
+  // Sensor convolution: force history per probe direction (ring buffers, newest at
+  // history_pos_), the force integral and time of the sample being filled, and each channel's
+  // velocity at the last two sample instants.
+  std::vector<double> history_[2];
+  long history_pos_ = 0;
+  double sample_force_[2] = {0, 0}, sample_time_ = 0;
+  std::vector<double> sensor_prev_, sensor_last_;
+  // The last step's second half (t^n to t^(n+1/2)) of the housing spring's and damper's work,
+  // left out of energies() (at t^n).
+  double spring_half_ = 0, damping_half_ = 0;
 };
 
 }  // namespace spallkit::sim

@@ -30,8 +30,13 @@
 //    take the lubricant traction curve of their slide-to-roll ratio instead
 //    (sim/contact/traction.h).
 // Time integration: central differences (rigid_body.h), inside Step().
-// Energies: StoredEnergy() = contact potentials + the rigid bodies' kinetic energy,
-// DissipatedEnergy() = friction + contact damping, ExternalWork() = radial load + shaft drive.
+// Energies, all at t^n (the forces' time, as the solver's balance: central differences conserve
+// energy measured there to second order, while kinetic energy at v^(n+1/2) is off by half a
+// step of the contact forces' power, a first-order error that swings with every impact):
+// StoredEnergy() = contact potentials at x^n + the rigid bodies' kinetic energy
+// 1/2 m v^(n-1/2) . v^(n+1/2); DissipatedEnergy() = friction + contact damping, ExternalWork()
+// = radial load + shaft drive, each force's work f^k . (v^(k-1/2) + v^(k+1/2)) dt_avg / 2 up to
+// t^n (step n's force over its first half step).
 #pragma once
 
 #include <string>
@@ -102,13 +107,13 @@ class RollerContacts {
   // Largest stable step of the contacts (safety factor included).
   double StableTimeStep() const { return dt_limit_; }
 
-  double StoredEnergy() const { return potential_ + kinetic_; }
+  double StoredEnergy() const { return potential_ + centred_kinetic_; }
   double DissipatedEnergy() const { return friction_work_ + damping_work_; }
-  double ExternalWork() const { return external_work_; }
-  // The same terms apart: rigid bodies' kinetic energy (at v^(n+1/2)), contact potentials (at
+  double ExternalWork() const { return external_work_ - external_half_; }
+  // The same terms apart: rigid bodies' kinetic energy at v^(n+1/2), contact potentials (at
   // x^n), friction and contact damping work.
   double KineticEnergy() const { return kinetic_; }
-  // The same at t^n, 1/2 m v^(n-1/2) . v^(n+1/2) (not checkpointed: valid after a step).
+  // The rigid bodies' kinetic energy at t^n, 1/2 m v^(n-1/2) . v^(n+1/2).
   double CentredKineticEnergy() const { return centred_kinetic_; }
   double ContactEnergy() const { return potential_; }
   double FrictionWork() const { return friction_work_; }
@@ -182,12 +187,12 @@ class RollerContacts {
   // A friction or damping force of one contact at step n, kept for the second half of its work
   // (FinishDissipation at the next step, when every body's v^(n+1/2) is known).
   struct DissipativeForce {
-    double fx, fy;    // on the roller (N)
-    double ax, ay;    // contact point - roller mass centre (x^n)
-    double px, py;    // contact point (world, x^n): the outer race's velocity is read there
-    double bx, by;    // contact point - counter body's centre (x^n)
-    double omega;     // counter body's spin used (the shaft's prescribed speed at t^n)
-    double weight;    // dt_avg / 2 of step n
+    double fx, fy;  // on the roller (N)
+    double ax, ay;  // contact point - roller mass centre (x^n)
+    double px, py;  // contact point (world, x^n): the outer race's velocity is read there
+    double bx, by;  // contact point - counter body's centre (x^n)
+    double omega;   // counter body's spin used (the shaft's prescribed speed at t^n)
+    double weight;  // dt_avg / 2 of step n
     int roller, counter, friction;  // friction: 1, damping: 0
   };
 
@@ -216,16 +221,20 @@ class RollerContacts {
   std::vector<double> outer_force_, inner_force_, cage_force_;
   double dt_prev_ = 0, potential_ = 0, kinetic_ = 0, friction_work_ = 0, damping_work_ = 0,
          external_work_ = 0;
+  // The last step's second half of the load and drive work (in external_work_, not yet in
+  // ExternalWork()), and the rigid bodies' kinetic energy at t^n.
+  double external_half_ = 0, centred_kinetic_ = 0;
   std::vector<DissipativeForce> pending_;  // this step's, for their second half
 
   // Per step.
   OuterRace* race_ = nullptr;
-  double dt_ = 0, omega_s_ = 0, step_potential_ = 0, centred_kinetic_ = 0;
+  double dt_ = 0, omega_s_ = 0, step_potential_ = 0;
   double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
          cage_torque_ = 0;
   std::vector<double> fx_, fy_, torque_;  // per roller
-  double cage_cos_ = 1, cage_sin_ = 0;  // of the cage's angle at x^n
-  // Per roller at x^n: cos and sin of its angle, circle centre.
+  double cage_cos_ = 1, cage_sin_ = 0;    // of the cage's angle at x^n
+  // Per roller at x^n: cos and sin of its angle (advanced with it in Integrate and
+  // checkpointed: not recomputed from the angle), circle centre.
   std::vector<double> cos_, sin_, centre_x_, centre_y_;
 };
 

@@ -71,9 +71,8 @@ ProfileDirections::ProfileDirections(const RollerProfile& p)
 double ProfileDirections::SupportPoint(double ux, double uy, double* px, double* py) const {
   double x = radius_ * ux, y = radius_ * uy;
   if (InSpall(ux, uy)) {
-    const int k = corner_x_[0] * ux + corner_y_[0] * uy >= corner_x_[1] * ux + corner_y_[1] * uy
-                      ? 0
-                      : 1;
+    const int k =
+        corner_x_[0] * ux + corner_y_[0] * uy >= corner_x_[1] * ux + corner_y_[1] * uy ? 0 : 1;
     x = corner_x_[k] + edge_radius_ * ux, y = corner_y_[k] + edge_radius_ * uy;
   }
   *px = x, *py = y;

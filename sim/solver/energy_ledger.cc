@@ -57,7 +57,7 @@ void WorkLedger::AddForces(fe::NodalState& state,
   const bool first = force_.size() != n;  // t = 0, or the first step after a resume
   if (first) {
     force_.assign(n, std::vector<double>(2 * nn, 0.0));
-    work_.assign(n, 0.0), edit_.assign(n, 0.0);
+    work_.assign(n, 0.0), half_.assign(n, 0.0), edit_.assign(n, 0.0);
     base_.assign(n, ContributorLedger{});
     scratch_.assign(2 * nn, 0.0);
     // Baselines: the accounts start here (stored energy at x^n; cumulative terms so far).
@@ -96,10 +96,13 @@ void WorkLedger::BookWork(const fe::NodalState& state, double dt_avg) {
   const size_t nn = state.size();
   for (size_t c = 0; c < force_.size(); ++c) {
     const std::vector<double>& f = force_[c];
-    double w = 0.0;
-    for (size_t i = 0; i < nn; ++i)
-      w += f[i] * (vx_[i] + state.vx[i]) + f[nn + i] * (vy_[i] + state.vy[i]);
-    work_[c] += 0.5 * dt_avg * w;
+    double w = 0.0, second = 0.0;
+    for (size_t i = 0; i < nn; ++i) {
+      w += f[i] * vx_[i] + f[nn + i] * vy_[i];
+      second += f[i] * state.vx[i] + f[nn + i] * state.vy[i];
+    }
+    work_[c] += 0.5 * dt_avg * (w + second);
+    half_[c] = 0.5 * dt_avg * second;
   }
 }
 
@@ -111,7 +114,7 @@ std::vector<ContributorLedger> WorkLedger::Ledgers(
       [&](size_t k, std::string name, double stored, double dissipated, double external) {
         ContributorLedger l;
         l.name = std::move(name);
-        l.work = work_[k], l.velocity_edit = edit_[k];
+        l.work = work_[k] - half_[k], l.velocity_edit = edit_[k];
         l.stored = stored, l.initial_stored = base_[k].stored;
         l.dissipated = dissipated - base_[k].dissipated;
         l.external = external - base_[k].external;

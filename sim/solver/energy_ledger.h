@@ -14,7 +14,10 @@ namespace spallkit::sim::solver {
 
 // Energy terms (J), cumulative since t = 0, at the last completed step.
 struct Energies {
-  double kinetic = 0.0;  // at v^(n+1/2), including rigid-body extra masses
+  // At t^n, the time of the stored energies: 1/2 m v^(n+1/2)^2 (rigid-body extra masses
+  // included) less the last half step of the nodal forces' work (explicit_solver.cc).
+  double kinetic = 0.0;
+  // The same measure at t^0: 1/2 m (v^0)^2 less 1/2 m (dt/2 a^0)^2 for the half-step start.
   double initial_kinetic = 0.0;
   // Contributors' stored energy at the first step: initial overlaps (e.g. a roller vertex that
   // starts inside a race facet's sag) start with penalty energy, part of the initial energy.
@@ -35,8 +38,9 @@ struct Energies {
 
 // One contributor's (or the elements') energy account since the ledger started (t = 0, or the
 // first step after a resume from a checkpoint; the ledger itself is not checkpointed), J. `work` is
-// the work its forces did on the nodes, sum_n f^n . (v^(n-1/2) + v^(n+1/2)) dt_avg / 2 (the same
-// central-difference rule as the balance), `velocity_edit` the kinetic energy its direct edits of
+// the work its forces did on the nodes, sum_k f^k . (v^(k-1/2) + v^(k+1/2)) dt_avg / 2 up to t^n
+// (the last step's force over its first half step only: the time of the balance's stored
+// energies), `velocity_edit` the kinetic energy its direct edits of
 // velocities changed (projections, ties). Its own books say the energy went into `stored`, was
 // `dissipated` or came in as `external` work; what they do not explain is Created():
 //   Created = work + velocity_edit + (stored - initial_stored) + dissipated - external
@@ -77,6 +81,7 @@ class WorkLedger {
  private:
   std::vector<std::vector<double>> force_;  // per account: x then y, 2 x nodes
   std::vector<double> work_, edit_;
+  std::vector<double> half_;             // the last step's second half of work_ (t^n to t^(n+1/2))
   std::vector<ContributorLedger> base_;  // accounts when the ledger started
   std::vector<double> vx_, vy_, scratch_;
 };

@@ -210,6 +210,7 @@ class ExplicitSolver {
 
   bool initialized_ = false;
   double time_ = 0.0, dt_ = 0.0, dt_prev_ = 0.0, next_output_time_ = 0.0;
+  double last_dt_avg_ = 0.0;  // the last step's (dt_prev + dt) / 2: energies() at t^n
   long step_ = 0, last_output_step_ = -1;
   int threads_ = 1;
   double mass_damping_ = 0.0;  // D_s, 1/s

@@ -11,7 +11,8 @@
 
 namespace spallkit::sim::solver {
 namespace {
-constexpr char kMagic[8] = {'S', 'P', 'K', 'C', 'K', 'P', 'T', '2'};  // 2: initial_stored
+// 3: the last step's nodal forces and dt_avg (energies at t^n).
+constexpr char kMagic[8] = {'S', 'P', 'K', 'C', 'K', 'P', 'T', '3'};
 }  // namespace
 
 std::string ExplicitSolver::SaveState() const {
@@ -22,11 +23,12 @@ std::string ExplicitSolver::SaveState() const {
   out.Put<std::uint64_t>(rigid_bodies_.size());
   out.Put<std::uint64_t>(contributors_.size());
   out.Put(initialized_);
-  for (double v : {time_, dt_, dt_prev_, next_output_time_}) out.Put(v);
+  for (double v : {time_, dt_, dt_prev_, next_output_time_, last_dt_avg_}) out.Put(v);
   out.Put(step_), out.Put(last_output_step_);
   for (double v : {damping_work_, reaction_work_, load_work_, initial_kinetic_, initial_stored_})
     out.Put(v);
-  for (const auto* v : {&state_.x, &state_.y, &state_.vx, &state_.vy}) out.PutVector(*v);
+  for (const auto* v : {&state_.x, &state_.y, &state_.vx, &state_.vy, &state_.fx, &state_.fy})
+    out.PutVector(*v);
   elements_.Save(&out);
   for (const auto& st : rigid_states_) out.Put(st);
   for (const ForceContributor* c : contributors_) {
@@ -54,13 +56,15 @@ void ExplicitSolver::LoadState(std::string_view bytes) {
     Initialize();
     callback_ = std::move(cb);
   }
-  for (double* v : {&time_, &dt_, &dt_prev_, &next_output_time_}) *v = in.Get<double>();
+  for (double* v : {&time_, &dt_, &dt_prev_, &next_output_time_, &last_dt_avg_})
+    *v = in.Get<double>();
   step_ = in.Get<long>(), last_output_step_ = in.Get<long>();
   for (double* v :
        {&damping_work_, &reaction_work_, &load_work_, &initial_kinetic_, &initial_stored_})
     *v = in.Get<double>();
   in.GetVectorInto(&state_.x, "x"), in.GetVectorInto(&state_.y, "y");
   in.GetVectorInto(&state_.vx, "vx"), in.GetVectorInto(&state_.vy, "vy");
+  in.GetVectorInto(&state_.fx, "fx"), in.GetVectorInto(&state_.fy, "fy");
   elements_.Load(&in);
   for (auto& st : rigid_states_) st = in.Get<RigidBodyState>();
   for (ForceContributor* c : contributors_) {

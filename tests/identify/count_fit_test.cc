@@ -17,14 +17,9 @@ namespace {
 using spallkit::testing::IdentifyRecord;
 using spallkit::testing::RollerRecordSpec;
 
-// The evidence untempered: these records are made by the fits' own signal model, so the
-// temperatures calibrated for the simulator's records (CountFitOptions) do not apply.
-IdentifyOptions ExactModel() {
-  IdentifyOptions o;
-  o.count.temperature_cage = 1.0;
-  o.count.temperature_sidebands = 1.0;
-  return o;
-}
+// These records are made by the fits' own signal model, so the calibration for the simulator's
+// records (temperatures, width scale) does not apply.
+IdentifyOptions ExactModel() { return SignalModelOptions(); }
 
 // One spall, 10 dB in the resonance band, 1 s at 1200 rpm (8 cage revolutions).
 TEST(CountFit, OneDefectiveRoller) {
@@ -44,7 +39,7 @@ TEST(CountFit, OneDefectiveRoller) {
 // Two spalls four slots apart: count 2, positions 0 and 4 x 360/13 = 110.8 deg.
 TEST(CountFit, TwoRollersFourSlotsApart) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 10, {{0}, {4, 1.38, 120}}));
-  const Identification id = IdentifyRecord(r, 1200, 10000);
+  const Identification id = IdentifyRecord(r, 1200, 10000, ExactModel());
   ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
   EXPECT_EQ(id.count, 2);
   ASSERT_EQ(id.positions_deg.size(), 2u);

@@ -1,4 +1,5 @@
-// spall identify: the JSON keys, the text report, and bad input (exit code 2, one line).
+// spall identify: the JSON keys, the text report, and bad input (exit code 2, one line), also of
+// spall identify-check.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -45,7 +46,10 @@ TEST(IdentifyCli, BadInputIsOneLineAndCode2) {
        {"identify " + kSample + " --bearing N205EM --rpm 0",
         "identify " + kSample + " --bearing N205EM --rpm 1200 --load-n -3",
         std::string("identify /nonexistent.csv --bearing N205EM --rpm 1200"),
-        "identify " + kSample + " --bearing NOPE --rpm 1200"}) {
+        "identify " + kSample + " --bearing NOPE --rpm 1200",
+        std::string("identify-check /nonexistent-folder"),
+        "identify-check " + std::string(SPALLKIT_SOURCE_DIR) + " --snr-db 10,x",
+        "identify-check " + std::string(SPALLKIT_SOURCE_DIR) + " --snr-db 10"}) {
     const auto r = RunSpall(args);
     EXPECT_EQ(r.code, 2) << args;
     EXPECT_EQ(r.err.rfind("spall:", 0), 0u) << r.err;

@@ -108,7 +108,7 @@ TEST(WidthFit, WidthOfASyntheticSpall) {
   SyntheticTruth truth;
   const Record r =
       MakeSyntheticRecord(spallkit::testing::RollerRecordSpec(900, 15, {{0, 1.8, 30}}, 3), &truth);
-  const Identification id = spallkit::testing::IdentifyRecord(r, 900, 10000);
+  const Identification id = spallkit::testing::IdentifyRecord(r, 900, 10000, SignalModelOptions());
   ASSERT_TRUE(id.width_identifiable) << id.BriefReport();
   EXPECT_NEAR(id.width_m, 1.8e-3, 0.1 * 1.8e-3);
   EXPECT_LE(id.width_low_m, 1.8e-3);
