@@ -22,6 +22,19 @@ struct Opts {
 int Run(Opts& o) {
   using namespace spallkit::sim::stress;
   o.stress.max_duration_s = o.max_duration_ms * 1e-3;
+  // The options by their command-line names (StressOptions::Validate names its fields).
+  auto check = [](bool ok, const char* what) {
+    if (!ok) throw spallkit::InputError(std::string("stress: ") + what);
+  };
+  check(o.stress.scenes >= 1 && o.stress.scenes <= 100000, "--scenes must be in [1, 100000]");
+  check(o.max_duration_ms >= 1.0 && o.max_duration_ms <= 1000.0,
+        "--max-duration-ms must be in [1, 1000]");
+  check(o.stress.min_mesh_size_mm >= 0.25 && o.stress.min_mesh_size_mm <= 5.0,
+        "--min-mesh-mm must be in [0.25, 5]");
+  check(o.stress.max_mesh_size_mm >= 0.25 && o.stress.max_mesh_size_mm <= 5.0,
+        "--max-mesh-mm must be in [0.25, 5]");
+  check(o.stress.min_mesh_size_mm <= o.stress.max_mesh_size_mm,
+        "--min-mesh-mm must not exceed --max-mesh-mm");
   if (!spallkit::sim::ParseFidelity(o.fidelity, &o.stress.fidelity))
     throw spallkit::InputError("stress: fidelity must be \"hybrid\", \"lumped\" or \"fe\" (got \"" +
                                o.fidelity + "\")");
@@ -53,6 +66,12 @@ spallkit::apps::Register reg(
       auto o = std::make_shared<Opts>();
       sub.add_option("--scenes", o->stress.scenes, "Number of scenes")->capture_default_str();
       sub.add_option("--seed", o->stress.seed, "Seed of the draw (same scenes on every machine)")
+          ->check(CLI::Validator(  // a uint64 would take "-3" as 2^64 - 3
+              [](std::string& v) {
+                return v.find('-') == std::string::npos ? std::string()
+                                                        : "must be a non-negative integer";
+              },
+              ""))
           ->capture_default_str();
       sub.add_option("--fidelity", o->fidelity, "Model of every scene: hybrid, lumped or fe")
           ->capture_default_str();

@@ -560,7 +560,6 @@ BandResult SearchCandidateBands(const EnvelopeAnalyzer& analyzer,
     }
     return found;
   };
-  // One band's SES, floor and four family searches; reads only shared state, writes *r.
   // A candidate is exactly its kurtogram node: the node's half-open bin range [lo, hi) (the
   // Hz band [low, high] would also take bin `high` when it falls on a bin), so its SES comes
   // from the node's own squared envelope and its mean from the same bins.

@@ -1,5 +1,6 @@
 #include "sim/bearing/model_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -221,9 +222,16 @@ FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& op
       const double d = std::hypot(mesh.x[id] - sensor.x_m, mesh.y[id] - sensor.y_m);
       if (d < best_d) best_d = d, best = id;
     }
-    if (best_d > 2e-3)
-      throw InputError("sensors." + sensor.name +
-                       ": no outer-ring or adapter node within 2 mm of the sensor point");
+    // Within one element of the point (a coarse mesh resolves the sensor no better), and 2 mm
+    // on fine meshes.
+    const double reach = std::max(2e-3, scene_.mesh.size_m);
+    if (best_d > reach) {
+      std::ostringstream os;
+      os << "sensors." << sensor.name << ": no outer-ring or adapter node within " << reach * 1e3
+         << " mm (2 mm or mesh.size_mm) of the sensor point (the nearest is " << best_d * 1e3
+         << " mm away): put the point on the outer ring or the adapter";
+      throw InputError(os.str());
+    }
     for (const std::string& dir : sensor.directions)
       channels_.push_back({sensor.name, dir == "x" ? 'x' : 'y', best, best_d});
   }

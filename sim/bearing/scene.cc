@@ -36,6 +36,12 @@ std::string Where(const std::string& file, const toml::node* node) {
   return file;
 }
 
+// "<where>: <key>: <what>", the key said once when <where> is already "--set <key>".
+std::string Located(const std::string& where, const std::string& key, const std::string& what) {
+  if (where == "--set " + key) return where + ": " + what;
+  return where + ": " + key + ": " + what;
+}
+
 // Inclusive/exclusive numeric range with a message.
 struct Range {
   double lo = -HUGE_VAL, hi = HUGE_VAL;
@@ -103,7 +109,7 @@ class Section {
 
   std::string Key(const std::string& key) const { return prefix_ + key; }
   [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
-    throw InputError(Where(*file_, table_->get(key)) + ": " + Key(key) + ": " + what);
+    throw InputError(Located(Where(*file_, table_->get(key)), Key(key), what));
   }
 
   double Number(const std::string& key, double def, const Range& range) {
@@ -685,7 +691,7 @@ Scene ParseScene(const std::string& toml_text,
   top.RejectUnknown();
   if (const auto v = FindSceneLimitViolation(scene)) {
     const toml::node* node = root.at_path(v->key).node();
-    throw InputError(Where(scene.source, node) + ": " + v->key + ": " + v->reason);
+    throw InputError(Located(Where(scene.source, node), v->key, v->reason));
   }
 
   std::ostringstream os;

@@ -9,7 +9,7 @@
 namespace spallkit::sim::stress {
 namespace {
 
-// Short runs on a coarse housing mesh (1.5-2.5 mm: coarser loses the default sensors' nodes):
+// Short runs on a coarse housing mesh (1.5-2.5 mm):
 // about half a second per scene.
 StressOptions Subset() {
   StressOptions o;
