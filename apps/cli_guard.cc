@@ -1,6 +1,7 @@
 #include "apps/cli_guard.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <vector>
@@ -114,6 +115,12 @@ std::string OneLine(const std::string& message, std::size_t max_chars) {
   if (s.size() >= max_chars && message.size() > max_chars)
     s += "... (" + std::to_string(message.size()) + " characters)";
   return s;
+}
+
+std::string Number(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  return buf;
 }
 
 }  // namespace spallkit::apps

@@ -31,4 +31,7 @@ std::string ParseErrorLine(const CLI::App& app, const CLI::ParseError& e);
 // whole 1 MB input line is never echoed).
 std::string OneLine(const std::string& message, std::size_t max_chars = 400);
 
+// A value for a message: "%.6g" ("1e-07", not std::to_string's "0.000000").
+std::string Number(double value);
+
 }  // namespace spallkit::apps

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "apps/bearing_options.h"
+#include "apps/cli_guard.h"
 #include "apps/command.h"
 #include "core/bearing.h"
 #include "core/error.h"
@@ -24,7 +25,7 @@ struct Opts {
 int Run(const Opts& o) {
   using namespace spallkit;
   if (!(o.rpm > 0.0) || !std::isfinite(o.rpm))
-    throw InputError("--rpm must be > 0 (got " + std::to_string(o.rpm) + ")");
+    throw InputError("--rpm must be > 0 (got " + spallkit::apps::Number(o.rpm) + ")");
   if (o.harmonics < 1 || o.harmonics > 50)
     throw InputError("--harmonics must be in [1, 50] (got " + std::to_string(o.harmonics) + ")");
   const BearingGeometry g = o.bearing.Geometry();

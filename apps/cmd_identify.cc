@@ -6,6 +6,7 @@
 #include <string>
 
 #include "apps/bearing_options.h"
+#include "apps/cli_guard.h"
 #include "apps/command.h"
 #include "core/constants.h"
 #include "core/error.h"
@@ -35,7 +36,7 @@ struct Opts {
 int Run(const Opts& o) {
   using namespace spallkit;
   if (!(o.rpm > 0.0) || !std::isfinite(o.rpm))
-    throw InputError("--rpm must be > 0 (got " + std::to_string(o.rpm) + ")");
+    throw InputError("--rpm must be > 0 (got " + spallkit::apps::Number(o.rpm) + ")");
   if (o.fs_option && o.fs_option->count() > 0 && (!(o.fs > 0.0) || !std::isfinite(o.fs)))
     throw InputError("--fs must be > 0 Hz (got " + std::to_string(o.fs) + ")");
   if (o.load_option && o.load_option->count() > 0 &&

@@ -16,6 +16,7 @@
 #include <numbers>
 #include <string>
 
+#include "apps/cli_guard.h"
 #include "apps/command.h"
 #include "core/bearing.h"
 #include "core/error.h"
@@ -38,7 +39,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 // Option ranges, each message naming the option (the library checks them again by its names).
 void CheckOptions(const Opts& o, const spallkit::BearingGeometry& bearing) {
   using spallkit::InputError;
-  auto num = [](double v) { return std::to_string(v); };
+  const auto num = [](double v) { return spallkit::apps::Number(v); };
   if (!(o.load_n >= 0)) throw InputError("--load-n must be >= 0 N (got " + num(o.load_n) + ")");
   if (!(o.rpm >= 0))
     throw InputError("--rpm must be >= 0 (the speed of the inner ring; got " + num(o.rpm) + ")");

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_guard.h"
 #include "apps/command.h"
 #include "apps/output_paths.h"
 #include "core/error.h"
@@ -53,7 +54,8 @@ void CheckBeforeRun(const Opts& o, const spallkit::sim::Scene& scene) {
                      ": the scene records no accelerations (add \"acceleration\" "
                      "to run.outputs and at least one [[sensors]])");
   if (o.stop_after_ms_given && !(o.stop_after_ms > 0))
-    throw InputError("--stop-after-ms must be > 0 (got " + std::to_string(o.stop_after_ms) + ")");
+    throw InputError("--stop-after-ms must be > 0 (got " + spallkit::apps::Number(o.stop_after_ms) +
+                     ")");
 }
 
 int Run(const Opts& o) {
