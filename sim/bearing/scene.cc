@@ -32,6 +32,12 @@ std::string Where(const std::string& file, const toml::node* node) {
     const auto& src = node->source();
     if (src.path && src.path->rfind("--set", 0) == 0) return *src.path;
     if (src.begin.line > 0) return file + ":" + std::to_string(src.begin.line);
+    // A table an override created has no source; its values name their --set.
+    if (const toml::table* t = node->as_table())
+      for (auto&& [k, v] : *t) {
+        const std::string inner = Where(file, &v);
+        if (inner.rfind("--set", 0) == 0) return inner;
+      }
   }
   return file;
 }
