@@ -48,7 +48,8 @@ void CheckBeforeRun(const Opts& o, const spallkit::sim::Scene& scene) {
   paths.Check();
   const auto& outs = scene.outputs;
   if (!o.csv.empty() &&
-      (std::find(outs.begin(), outs.end(), "acceleration") == outs.end() || scene.sensors.empty()))
+      (std::find(outs.begin(), outs.end(), spallkit::sim::Output::kAcceleration) == outs.end() ||
+       scene.sensors.empty()))
     throw InputError("--csv " + o.csv +
                      ": the scene records no accelerations (add \"acceleration\" "
                      "to run.outputs and at least one [[sensors]])");

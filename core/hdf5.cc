@@ -147,6 +147,23 @@ Handle OpenAttribute(hid_t obj, const std::string& name) {
   return Handle(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose);
 }
 
+// Attribute `name` of the object at `object_path`, opened for reading with its type and
+// dataspace; nullopt when the object has no such attribute (a missing object is an InputError).
+struct ReadableAttribute {
+  Handle obj, attr, type, space;
+};
+std::optional<ReadableAttribute> OpenReadableAttribute(hid_t file,
+                                                       const std::string& file_name,
+                                                       const std::string& object_path,
+                                                       const std::string& name) {
+  Handle obj = OpenObject(file, file_name, object_path);
+  Handle attr = OpenAttribute(obj.get(), name);
+  if (!attr.ok()) return std::nullopt;
+  Handle type(H5Aget_type(attr.get()), H5Tclose);
+  Handle space(H5Aget_space(attr.get()), H5Sclose);
+  return ReadableAttribute{std::move(obj), std::move(attr), std::move(type), std::move(space)};
+}
+
 void ReplaceAttribute(hid_t obj, const std::string& name) {
   if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
 }
@@ -333,18 +350,15 @@ std::optional<double> File::ReadDoubleAttribute(const std::string& object_path,
                                                 const std::string& name) const {
   RequireOpen();
   ErrorSilencer silence;
-  Handle obj = OpenObject(id_, path_, object_path);
-  Handle attr = OpenAttribute(obj.get(), name);
-  if (!attr.ok()) return std::nullopt;
-  Handle type(H5Aget_type(attr.get()), H5Tclose);
-  const H5T_class_t cls = H5Tget_class(type.get());
-  Handle space(H5Aget_space(attr.get()), H5Sclose);
-  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  const std::optional<ReadableAttribute> a = OpenReadableAttribute(id_, path_, object_path, name);
+  if (!a) return std::nullopt;
+  const H5T_class_t cls = H5Tget_class(a->type.get());
+  const hssize_t count = H5Sget_simple_extent_npoints(a->space.get());
   if ((cls != H5T_FLOAT && cls != H5T_INTEGER) || count != 1) {
     Fail(path_, Normalize(object_path) + ": attribute '" + name + "' is not a single number");
   }
   double value = 0;
-  if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &value) < 0) {
+  if (H5Aread(a->attr.get(), H5T_NATIVE_DOUBLE, &value) < 0) {
     Fail(path_, Normalize(object_path) + ": cannot read attribute '" + name + "'");
   }
   return value;
@@ -354,11 +368,11 @@ std::optional<std::string> File::ReadStringAttribute(const std::string& object_p
                                                      const std::string& name) const {
   RequireOpen();
   ErrorSilencer silence;
-  Handle obj = OpenObject(id_, path_, object_path);
-  Handle attr = OpenAttribute(obj.get(), name);
-  if (!attr.ok()) return std::nullopt;
-  Handle type(H5Aget_type(attr.get()), H5Tclose);
-  Handle space(H5Aget_space(attr.get()), H5Sclose);
+  const std::optional<ReadableAttribute> a = OpenReadableAttribute(id_, path_, object_path, name);
+  if (!a) return std::nullopt;
+  const Handle& attr = a->attr;
+  const Handle& type = a->type;
+  const Handle& space = a->space;
   const std::string where = Normalize(object_path) + ": attribute '" + name + "'";
   if (H5Tget_class(type.get()) != H5T_STRING || H5Sget_simple_extent_npoints(space.get()) != 1) {
     Fail(path_, where + " is not a single string");

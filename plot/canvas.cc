@@ -178,13 +178,11 @@ std::string Num(double v) {
   return buf;
 }
 
-void DrawTitleAndAxisLabels(cv::Mat& img,
-                            const Style& st,
-                            const cv::Rect& area,
-                            int pad,
-                            const std::string& title,
-                            const std::string& x_label,
-                            const std::string& y_label) {
+void DrawTitleAndAxisLabels(
+    cv::Mat& img, const Style& st, const cv::Rect& area, int pad, const AxisTitles& titles) {
+  const std::string& title = titles.title;
+  const std::string& x_label = titles.x_label;
+  const std::string& y_label = titles.y_label;
   if (!title.empty()) {
     double scale = st.title();
     while (scale > 0.3 && TextSize(title, scale, st.stroke() + 1).width > img.cols - 2 * pad) {
@@ -215,20 +213,24 @@ void DrawTitleAndAxisLabels(cv::Mat& img,
 }
 
 void DrawXTick(
-    cv::Mat& img, const Style& st, int px, int y0, int len, int pad, const std::string& label) {
-  cv::line(img, {px, y0}, {px, y0 + len}, kBlack, 1);
-  Text(img, label, cv::Point(px, y0 + len + pad / 2), {st.tick()}, HAlign::kCenter, VAlign::kTop);
+    cv::Mat& img, const Style& st, cv::Point top, int len, int pad, const std::string& label) {
+  cv::line(img, top, {top.x, top.y + len}, kBlack, 1);
+  Text(img,
+       label,
+       cv::Point(top.x, top.y + len + pad / 2),
+       {st.tick()},
+       HAlign::kCenter,
+       VAlign::kTop);
 }
 
 void DrawYTick(cv::Mat& img,
                const Style& st,
-               int py,
-               int x_end,
+               cv::Point right,
                int len,
                int label_x,
                const std::string& label) {
-  cv::line(img, {x_end - len, py}, {x_end, py}, kBlack, 1);
-  Text(img, label, cv::Point(label_x, py), {st.tick()}, HAlign::kRight, VAlign::kMiddle);
+  cv::line(img, {right.x - len, right.y}, right, kBlack, 1);
+  Text(img, label, cv::Point(label_x, right.y), {st.tick()}, HAlign::kRight, VAlign::kMiddle);
 }
 
 }  // namespace spallkit::plot::internal

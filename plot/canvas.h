@@ -102,28 +102,23 @@ void CheckSize(int width, int height, const char* what);
 // "%g" of a value, for messages.
 std::string Num(double v);
 
-// Title centred on top (shrunk to fit), x label under the plot area, y label rotated on the left.
-void DrawTitleAndAxisLabels(cv::Mat& img,
-                            const Style& st,
-                            const cv::Rect& area,
-                            int pad,
-                            const std::string& title,
-                            const std::string& x_label,
-                            const std::string& y_label);
+// A plot's title and axis labels.
+struct AxisTitles {
+  std::string title, x_label, y_label;
+};
 
-// A tick below the plot area: a mark of `len` pixels down from (px, y0) and its label centred
-// under it, `pad` / 2 lower.
+// Title centred on top (shrunk to fit), x label under the plot area, y label rotated on the left.
+void DrawTitleAndAxisLabels(
+    cv::Mat& img, const Style& st, const cv::Rect& area, int pad, const AxisTitles& titles);
+
+// A tick below the plot area: a mark of `len` pixels down from `top` and its label centred under
+// it, `pad` / 2 lower.
 void DrawXTick(
-    cv::Mat& img, const Style& st, int px, int y0, int len, int pad, const std::string& label);
-// A tick left of the plot area: a mark from (x_end - len, py) to (x_end, py) and its label
-// right-aligned at x = label_x, centred on py.
-void DrawYTick(cv::Mat& img,
-               const Style& st,
-               int py,
-               int x_end,
-               int len,
-               int label_x,
-               const std::string& label);
+    cv::Mat& img, const Style& st, cv::Point top, int len, int pad, const std::string& label);
+// A tick left of the plot area: a mark of `len` pixels left from `right` and its label
+// right-aligned at x = label_x, centred on the mark.
+void DrawYTick(
+    cv::Mat& img, const Style& st, cv::Point right, int len, int label_x, const std::string& label);
 
 // Renders with `render` and writes the PNG atomically; a bad plot spec is reported with the path.
 template <typename Render>

@@ -146,7 +146,7 @@ void DrawAxes(cv::Mat& img, const Heatmap& map, const Style& st, const Layout& l
   const std::vector<Tick> xticks = LinearTicks(map.x_min, map.x_max, std::max(4, area.width / 150));
   for (const Tick& t : xticks) {
     const int px = static_cast<int>(std::lround(x_to_px(t.value)));
-    DrawXTick(img, st, px, area.y + area.height, tl, pad, t.label);
+    DrawXTick(img, st, {px, area.y + area.height}, tl, pad, t.label);
   }
   if (categorical) {
     const double ch = static_cast<double>(area.height) / map.rows;
@@ -154,12 +154,12 @@ void DrawAxes(cv::Mat& img, const Heatmap& map, const Style& st, const Layout& l
     for (int r = 0; r < map.rows; r += every) {
       const int draw_r = map.row0_at_top ? r : map.rows - 1 - r;
       const int py = static_cast<int>(std::lround(area.y + (draw_r + 0.5) * ch));
-      DrawYTick(img, st, py, area.x - 1, tl - 1, area.x - tl - pad / 2, map.y_tick_labels[r]);
+      DrawYTick(img, st, {area.x - 1, py}, tl - 1, area.x - tl - pad / 2, map.y_tick_labels[r]);
     }
   } else {
     for (const Tick& t : yticks) {
       const int py = static_cast<int>(std::lround(y_to_px(t.value)));
-      DrawYTick(img, st, py, area.x - 1, tl - 1, area.x - tl - pad / 2, t.label);
+      DrawYTick(img, st, {area.x - 1, py}, tl - 1, area.x - tl - pad / 2, t.label);
     }
   }
 }
@@ -220,7 +220,7 @@ std::vector<unsigned char> RenderHeatmapPng(const Heatmap& map) {
   DrawCells(img, map, st, layout.area, v_lo, v_hi);
   DrawAxes(img, map, st, layout);
   DrawColorbar(img, map, st, layout, v_lo, v_hi);
-  DrawTitleAndAxisLabels(img, st, layout.area, layout.pad, map.title, map.x_label, map.y_label);
+  DrawTitleAndAxisLabels(img, st, layout.area, layout.pad, {map.title, map.x_label, map.y_label});
   return EncodePng(img);
 }
 

@@ -296,12 +296,12 @@ void DrawFrameAndTicks(
   const int tl = st.tick_len();
   for (const Tick& t : xticks) {
     const int px = static_cast<int>(std::lround(ax.ToPixel(t.value)));
-    DrawXTick(img, st, px, area.y + area.height, tl, pad, t.label);
+    DrawXTick(img, st, {px, area.y + area.height}, tl, pad, t.label);
   }
   for (const Tick& t : yticks) {
     const int py = static_cast<int>(std::lround(ay.ToPixel(t.value)));
     const int len = t.label.empty() ? tl / 2 : tl;  // minor ticks are shorter
-    DrawYTick(img, st, py, area.x, len, area.x - tl - pad / 2, t.label);
+    DrawYTick(img, st, {area.x, py}, len, area.x - tl - pad / 2, t.label);
   }
 }
 
@@ -377,7 +377,7 @@ std::vector<unsigned char> RenderLinePlotPng(const LinePlot& plot) {
   const std::vector<cv::Rect> label_boxes = DrawMarkers(inner, plot, st, area, ax, ax_in);
   DrawSeries(inner, plot, st, ax_in, ay_in);
   DrawFrameAndTicks(img, st, layout, ax, ay);
-  DrawTitleAndAxisLabels(img, st, area, layout.pad, plot.title, plot.x_label, plot.y_label);
+  DrawTitleAndAxisLabels(img, st, area, layout.pad, {plot.title, plot.x_label, plot.y_label});
   DrawLegend(img, plot, st, area, layout.pad, label_boxes);
   return EncodePng(img);
 }

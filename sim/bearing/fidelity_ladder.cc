@@ -34,7 +34,7 @@ LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duratio
   if (rung.fidelity != Fidelity::kLumped) s.mesh.size_m = s.mesh.contact_size_m = rung.mesh_m;
   s.run.duration_s = duration;
   s.solver.threads = 1;
-  s.outputs = {"contact_forces", "acceleration", "cage", "rollers"};
+  s.outputs = {Output::kContactForces, Output::kAcceleration, Output::kCage, Output::kRollers};
   Simulation sim(s, {});
   const SimulationSummary sum = sim.Run();
   const Recorder& rec = sim.recorder();

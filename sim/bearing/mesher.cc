@@ -437,21 +437,43 @@ BearingMesh BearingLayout(const SceneGeometry& g) {
   return out;
 }
 
-// Outer ring: raceway on the inside, node 0 at the bottom so the adapter seat matches; radial
-// layers graded from the contact size at the raceway to the mesh size.
+// A ring between radii r_in and r_out with its raceway on the inside (outer ring) or the outside
+// (inner ring): node 0 at the bottom so the adapter seat matches, the contact size hc along the
+// raceway and radial layers graded from hc at the raceway to the mesh size h. The raceway's curve
+// is "<name>.raceway", the other face's "<name>.<other_face>".
+fe::Mesh MakeRing(const std::string& name,
+                  double r_in,
+                  double r_out,
+                  bool raceway_inside,
+                  const std::string& other_face,
+                  double h,
+                  double hc,
+                  fe::AnnulusSpec* spec) {
+  fe::AnnulusSpec& s = *spec;
+  s.inner_radius = r_in;
+  s.outer_radius = r_out;
+  s.n_theta = static_cast<int>(std::lround(2 * kPi * (raceway_inside ? r_in : r_out) / hc));
+  s.n_radial = std::max(2, static_cast<int>(std::lround((r_out - r_in) / h)));
+  s.theta0 = -kPi / 2;
+  s.radial_ratio = raceway_inside ? h / hc : hc / h;
+  fe::Mesh ring = fe::MakeAnnulus(name, s);
+  const std::string raceway = raceway_inside ? ".inner" : ".outer";
+  const std::string other = raceway_inside ? ".outer" : ".inner";
+  Rename(&ring, name + raceway, name + ".raceway");
+  Rename(&ring, name + other, name + "." + other_face);
+  return ring;
+}
+
 fe::Mesh MakeOuterRing(
     const SceneGeometry& g, double raceway_radius, double h, double hc, fe::AnnulusSpec* spec) {
-  fe::AnnulusSpec& os = *spec;
-  os.inner_radius = raceway_radius;
-  os.outer_radius = 0.5 * g.outer_ring_outer_diameter_m;
-  os.n_theta = static_cast<int>(std::lround(2 * kPi * os.inner_radius / hc));
-  os.n_radial = std::max(2, static_cast<int>(std::lround((os.outer_radius - os.inner_radius) / h)));
-  os.theta0 = -kPi / 2;
-  os.radial_ratio = h / hc;
-  fe::Mesh outer = fe::MakeAnnulus("outer_ring", os);
-  Rename(&outer, "outer_ring.inner", "outer_ring.raceway");
-  Rename(&outer, "outer_ring.outer", "outer_ring.outside");
-  return outer;
+  return MakeRing("outer_ring",
+                  raceway_radius,
+                  0.5 * g.outer_ring_outer_diameter_m,
+                  /*raceway_inside=*/true,
+                  "outside",
+                  h,
+                  hc,
+                  spec);
 }
 
 }  // namespace
@@ -467,15 +489,14 @@ BearingMesh MeshBearing(const Scene& scene) {
   fe::Mesh outer = MakeOuterRing(g, out.outer_raceway_radius_m, h, hc, &os);
   // Inner ring: raceway on the outside.
   fe::AnnulusSpec is;
-  is.inner_radius = 0.5 * g.inner_ring_bore_diameter_m;
-  is.outer_radius = out.inner_raceway_radius_m;
-  is.n_theta = static_cast<int>(std::lround(2 * kPi * is.outer_radius / hc));
-  is.n_radial = std::max(2, static_cast<int>(std::lround((is.outer_radius - is.inner_radius) / h)));
-  is.theta0 = -kPi / 2;
-  is.radial_ratio = hc / h;
-  fe::Mesh inner = fe::MakeAnnulus("inner_ring", is);
-  Rename(&inner, "inner_ring.outer", "inner_ring.raceway");
-  Rename(&inner, "inner_ring.inner", "inner_ring.bore");
+  fe::Mesh inner = MakeRing("inner_ring",
+                            0.5 * g.inner_ring_bore_diameter_m,
+                            out.inner_raceway_radius_m,
+                            /*raceway_inside=*/false,
+                            "bore",
+                            h,
+                            hc,
+                            &is);
   parts.push_back(std::move(outer));
   parts.push_back(std::move(inner));
   parts.push_back(MakeCage(g, out.roller_angles_rad, hc, h));

@@ -41,25 +41,25 @@ Recorder::Recorder(const BearingModel& model, const RecorderOptions& options)
     return static_cast<int>(series_.size()) - 1;
   };
   idx_time_ = add("/time", 1, "s");
-  if (Wants("contact_forces")) {
+  if (Wants(Output::kContactForces)) {
     idx_outer_ = add("/contact/roller_outer", z, "N");
     idx_inner_ = add("/contact/roller_inner", z, "N");
     idx_cage_force_ = add("/contact/roller_cage", z, "N");
   }
-  if (Wants("cage")) {
+  if (Wants(Output::kCage)) {
     idx_omega_ = add("/cage/omega", 1, "rad/s");
     idx_slip_ = add("/cage/slip_ratio", 1, "1");
   }
-  if (Wants("rollers")) {
+  if (Wants(Output::kRollers)) {
     idx_spin_ = add("/rollers/spin", z, "rad/s");
     idx_orbit_ = add("/rollers/orbit_angle", z, "rad");
   }
-  if (Wants("energy")) {
+  if (Wants(Output::kEnergy)) {
     idx_energy_ = static_cast<int>(series_.size());
     for (const char* term : kEnergyTerms)
       add(std::string("/energy/") + term, 1, std::string(term) == "balance_error" ? "1" : "J");
   }
-  accel_ = Wants("acceleration") && !model_.sensor_channels().empty();
+  accel_ = Wants(Output::kAcceleration) && !model_.sensor_channels().empty();
   if (accel_) {
     const size_t nc = model_.sensor_channels().size();
     fine_h_ = 1.0 / (options_.output_rate_hz * options_.fine_factor);
@@ -74,7 +74,7 @@ Recorder::Recorder(const BearingModel& model, const RecorderOptions& options)
   last_orbit_.assign(z, std::numeric_limits<double>::quiet_NaN());
 }
 
-bool Recorder::Wants(const std::string& output) const {
+bool Recorder::Wants(Output output) const {
   return std::find(options_.outputs.begin(), options_.outputs.end(), output) !=
          options_.outputs.end();
 }

@@ -30,8 +30,11 @@ struct RecorderOptions {
   double output_rate_hz = 20000.0;
   double duration_s = 0.2;
   int fine_factor = 8;  // fine grid rate / output rate for the acceleration
-  std::vector<std::string> outputs = {
-      "contact_forces", "acceleration", "cage", "rollers", "energy"};
+  std::vector<Output> outputs = {Output::kContactForces,
+                                 Output::kAcceleration,
+                                 Output::kCage,
+                                 Output::kRollers,
+                                 Output::kEnergy};
 };
 
 class Recorder {
@@ -70,7 +73,7 @@ class Recorder {
  private:
   void Sample();
   void PushFine(int channel, double accel);
-  bool Wants(const std::string& output) const;
+  bool Wants(Output output) const;
 
   const BearingModel& model_;
   RecorderOptions options_;

@@ -82,6 +82,12 @@ constexpr NamedValue<AdapterModel> kAdapterModelNames[] = {{AdapterModel::kElast
 constexpr NamedValue<RaceContact> kRaceContactNames[] = {{RaceContact::kFaceted, "faceted"},
                                                          {RaceContact::kCurved, "curved"},
                                                          {RaceContact::kSmooth, "smooth"}};
+constexpr NamedValue<Output> kOutputNames[] = {{Output::kContactForces, "contact_forces"},
+                                               {Output::kAcceleration, "acceleration"},
+                                               {Output::kCage, "cage"},
+                                               {Output::kRollers, "rollers"},
+                                               {Output::kEnergy, "energy"},
+                                               {Output::kField, "field"}};
 
 template <typename E, std::size_t N>
 const char* NameOf(const NamedValue<E> (&table)[N], E value) {
@@ -511,17 +517,19 @@ void ReadSensors(Section& top, const SceneGeometry& g, std::vector<Sensor>* sens
         Section(arr->get(i)->as_table(), "sensors." + std::to_string(i) + ".", &top.file()), i));
 }
 
-void ReadRun(Section s, SceneRun* run, std::vector<std::string>* outputs) {
+void ReadRun(Section s, SceneRun* run, std::vector<Output>* outputs) {
   run->duration_s = s.Number("duration_s", 0.2, kPositive);
   run->output_rate_hz = s.Number("output_rate_hz", 20000.0, kPositive);
-  const auto known = KnownOutputs();
-  *outputs = s.Strings("outputs", {"contact_forces", "acceleration", "cage", "rollers", "energy"});
-  for (const auto& o : *outputs)
-    if (std::find(known.begin(), known.end(), o) == known.end()) {
+  for (const std::string& name :
+       s.Strings("outputs", {"contact_forces", "acceleration", "cage", "rollers", "energy"})) {
+    Output o;
+    if (!ParseOutput(name, &o)) {
       std::string list;
-      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-      s.Fail("outputs", "unknown output \"" + o + "\" (known: " + list + ")");
+      for (const auto& k : KnownOutputs()) list += (list.empty() ? "" : ", ") + k;
+      s.Fail("outputs", "unknown output \"" + name + "\" (known: " + list + ")");
     }
+    outputs->push_back(o);
+  }
   Section tol = s.Table("tolerance");
   SceneTolerance& t = run->tolerance;
   t.f_b = tol.Number("f_b", t.f_b, kPositive);
@@ -558,8 +566,15 @@ bool ParseRaceContact(const std::string& name, RaceContact* race_contact) {
   return ParseName(kRaceContactNames, name, race_contact);
 }
 
+const char* OutputName(Output output) { return NameOf(kOutputNames, output); }
+bool ParseOutput(const std::string& name, Output* output) {
+  return ParseName(kOutputNames, name, output);
+}
+
 std::vector<std::string> KnownOutputs() {
-  return {"contact_forces", "acceleration", "cage", "rollers", "energy", "field"};
+  std::vector<std::string> names;
+  for (const auto& e : kOutputNames) names.push_back(e.name);
+  return names;
 }
 
 toml::table ParseToml(const std::string& toml_text, const std::string& source_name) {

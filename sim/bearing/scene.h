@@ -150,6 +150,13 @@ bool ParseAdapterModel(const std::string& name, AdapterModel* adapter);
 const char* RaceContactName(RaceContact race_contact);
 bool ParseRaceContact(const std::string& name, RaceContact* race_contact);
 
+// What a run records ([run] outputs): roller contact forces, sensor accelerations, cage speed and
+// slip, roller spin and orbit, energy terms; kField is accepted and records nothing more.
+enum class Output { kContactForces, kAcceleration, kCage, kRollers, kEnergy, kField };
+// Scene-file names: "contact_forces", "acceleration", "cage", "rollers", "energy", "field".
+const char* OutputName(Output output);
+bool ParseOutput(const std::string& name, Output* output);
+
 // [model]: keys fidelity, adapter, race_contact.
 struct SceneModel {
   Fidelity fidelity = Fidelity::kFe;
@@ -177,7 +184,7 @@ struct Scene {
   SceneMesh mesh;
   SceneModel model;
   std::vector<Sensor> sensors;
-  std::vector<std::string> outputs;  // e.g. "contact_forces", "acceleration", "cage", "energy"
+  std::vector<Output> outputs;  // [run] outputs
   SceneRun run;
   SceneSolver solver;
   std::string effective_toml;  // after overrides and defaults
@@ -201,7 +208,7 @@ toml::table ParseToml(const std::string& toml_text, const std::string& source_na
 // same type (an integer may replace a float). Throws InputError naming the key.
 void ApplyOverride(toml::table& table, const std::string& assignment);
 
-// Output names accepted under [run] outputs.
+// Output names accepted under [run] outputs (OutputName of every Output).
 std::vector<std::string> KnownOutputs();
 
 }  // namespace spallkit::sim

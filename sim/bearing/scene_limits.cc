@@ -90,12 +90,12 @@ double EstimatedResultBytes(const Scene& scene) {
   double channels = 0;
   for (const Sensor& s : scene.sensors) channels += static_cast<double>(s.directions.size());
   double columns = 1;  // time
-  for (const std::string& out : scene.outputs) {
-    if (out == "contact_forces") columns += 3 * z;
-    if (out == "cage") columns += 2;
-    if (out == "rollers") columns += 2 * z;
-    if (out == "energy") columns += 8;
-    if (out == "acceleration") columns += channels;
+  for (const Output out : scene.outputs) {
+    if (out == Output::kContactForces) columns += 3 * z;
+    if (out == Output::kCage) columns += 2;
+    if (out == Output::kRollers) columns += 2 * z;
+    if (out == Output::kEnergy) columns += 8;
+    if (out == Output::kAcceleration) columns += channels;
   }
   // Doubled: the results are copied once more when written.
   return 2.0 * 8.0 * samples * columns;

@@ -255,6 +255,28 @@ TEST(Scene, ModelChoicesAreEnumsNamedAsInTheSceneFile) {
                      "model.adapter: expected \"elastic\" or \"rigid\", got \"soft\"");
 }
 
+// [run] outputs: enums in the file's order, the default set when absent, names round-trip.
+TEST(Scene, RunOutputsAreEnums) {
+  const std::vector<Output> defaults = {Output::kContactForces,
+                                        Output::kAcceleration,
+                                        Output::kCage,
+                                        Output::kRollers,
+                                        Output::kEnergy};
+  EXPECT_EQ(ParseScene("", "d.toml").outputs, defaults);
+  EXPECT_EQ(ParseScene("[run]\noutputs = [\"energy\", \"cage\"]\n", "o.toml").outputs,
+            (std::vector<Output>{Output::kEnergy, Output::kCage}));
+  EXPECT_TRUE(ParseScene("[run]\noutputs = []\n", "o.toml").outputs.empty());
+  const std::vector<std::string> names = KnownOutputs();
+  ASSERT_EQ(names.size(), 6u);
+  for (const std::string& name : names) {
+    Output o = Output::kField;
+    EXPECT_TRUE(ParseOutput(name, &o)) << name;
+    EXPECT_EQ(OutputName(o), name);
+  }
+  Output o;
+  EXPECT_FALSE(ParseOutput("movie", &o));
+}
+
 TEST(Scene, MissingFileIsInputError) {
   EXPECT_THROW(LoadScene("/nonexistent/scene.toml"), InputError);
 }
