@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "dsp/explain.h"
 #include "dsp/prewhiten.h"
 #include "dsp/record_check.h"
@@ -227,12 +228,6 @@ std::pair<bool, double> BandKey(const BandResult& b) {
   return {any, margin};
 }
 
-std::string Fmt(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
-
 // What the kinematics ask of the analysis.
 struct AnalysisNeeds {
   double max_scale = 1.0;   // largest speed x slip factor searched
@@ -251,11 +246,11 @@ AnalysisNeeds SetUpDiagnosis(const Record& record,
   std::string error;
   if (!options.IsValid(&error)) throw InputError("diagnose: " + error);
   if (!(shaft_hz > 0.0) || !std::isfinite(shaft_hz))
-    throw InputError("diagnose: shaft speed must be > 0 (got " + Fmt("%g", shaft_hz * 60.0) +
-                     " rpm)");
+    throw InputError("diagnose: shaft speed must be > 0 (got " +
+                     FormatNumber("%g", shaft_hz * 60.0) + " rpm)");
   const double fs = record.sample_rate_hz;
   if (!(fs > 0.0) || !std::isfinite(fs))
-    throw InputError("diagnose: sample rate must be > 0 Hz (got " + Fmt("%g", fs) + ")");
+    throw InputError("diagnose: sample rate must be > 0 Hz (got " + FormatNumber("%g", fs) + ")");
 
   d->options = options;
   d->bearing = bearing.name;
@@ -269,8 +264,9 @@ AnalysisNeeds SetUpDiagnosis(const Record& record,
   const auto& kin = d->kinematics;
   const double top_fundamental = std::max({kin.bpfi_hz, kin.bpfo_hz, kin.f_b_hz});
   if (top_fundamental >= 0.5 * fs)
-    throw InputError("diagnose: fault frequencies above Nyquist: BPFI " + Fmt("%.1f", kin.bpfi_hz) +
-                     " Hz >= fs/2 = " + Fmt("%.1f", 0.5 * fs) + " Hz (check --rpm and --fs)");
+    throw InputError(
+        "diagnose: fault frequencies above Nyquist: BPFI " + FormatNumber("%.1f", kin.bpfi_hz) +
+        " Hz >= fs/2 = " + FormatNumber("%.1f", 0.5 * fs) + " Hz (check --rpm and --fs)");
 
   FaultBandOptions fbo;
   fbo.harmonics = options.harmonics;
@@ -280,19 +276,19 @@ AnalysisNeeds SetUpDiagnosis(const Record& record,
   needs.max_scale = (1.0 + options.speed_search) * (1.0 + options.tolerance);
   needs.alpha_need = NeededAlpha(d->families, needs.max_scale);
   if (needs.alpha_need > 0.25 * fs)
-    throw InputError("diagnose: fault lines up to " + Fmt("%.0f", needs.alpha_need) +
+    throw InputError("diagnose: fault lines up to " + FormatNumber("%.0f", needs.alpha_need) +
                      " Hz (harmonics " + std::to_string(options.harmonics) +
                      ") need a demodulation band that wide above them: fs must be >= " +
-                     Fmt("%.0f", 4.0 * needs.alpha_need) + " Hz (got " + Fmt("%g", fs) +
-                     "; lower --harmonics or check --rpm)");
+                     FormatNumber("%.0f", 4.0 * needs.alpha_need) + " Hz (got " +
+                     FormatNumber("%g", fs) + "; lower --harmonics or check --rpm)");
 
   needs.duration_s = d->samples / fs;
   const double min_duration =
       std::max((options.floor_window_bins + 2) / needs.alpha_need, 4.0 / kin.cage_hz);
   if (needs.duration_s < min_duration)
     throw InputError("diagnose: too few samples: " + std::to_string(d->samples) + " (" +
-                     Fmt("%.3g", needs.duration_s) + " s at " + Fmt("%g", fs) +
-                     " Hz); the analysis needs " + Fmt("%.3g", min_duration) + " s (" +
+                     FormatNumber("%.3g", needs.duration_s) + " s at " + FormatNumber("%g", fs) +
+                     " Hz); the analysis needs " + FormatNumber("%.3g", min_duration) + " s (" +
                      std::to_string(static_cast<long>(std::ceil(min_duration * fs))) +
                      " samples) to resolve the cage rate and the noise floor");
   return needs;
@@ -313,8 +309,9 @@ std::vector<KurtogramNode> CandidateBands(const std::vector<KurtogramNode>& node
       candidates.push_back(node);
   }
   if (candidates.empty())
-    throw InputError("diagnose: no demodulation band of width >= " + Fmt("%.0f", band_need) +
-                     " Hz fits below fs/2 = " + Fmt("%.0f", 0.5 * fs) + " Hz");
+    throw InputError(
+        "diagnose: no demodulation band of width >= " + FormatNumber("%.0f", band_need) +
+        " Hz fits below fs/2 = " + FormatNumber("%.0f", 0.5 * fs) + " Hz");
   return candidates;
 }
 
@@ -348,9 +345,10 @@ void ApplyRecordLengthRule(double duration, double min_periods, Diagnosis* d) {
     const double periods = duration * d->families[static_cast<int>(det.component)].fundamental_hz;
     if (det.detected && periods < min_periods) {
       det.detected = false;
-      det.reason = "not claimed: the record holds " + Fmt("%.1f", periods) + " periods of " +
-                   ComponentSymbol(det.component) +
-                   ", a claim needs >= " + Fmt("%.0f", min_periods) + " (" + det.reason + ")";
+      det.reason = "not claimed: the record holds " + FormatNumber("%.1f", periods) +
+                   " periods of " + ComponentSymbol(det.component) +
+                   ", a claim needs >= " + FormatNumber("%.0f", min_periods) + " (" + det.reason +
+                   ")";
     }
   }
 }
@@ -682,7 +680,11 @@ void ExplainAndConclude(const DetectionContext& ctx,
                         const DiagnoseOptions& options,
                         Diagnosis* d) {
   // Joint explanation: the best family claims the lines it explains, the others are re-tested on
-  // what is left; ranked = explanation order, then the undetected by p-value.
+  // what is left; ranked = explanation order, then the undetected by p-value. A family the record
+  // is too short to claim claims no lines either (a short record's cage comb would otherwise
+  // explain away a roller comb whose lines sit near its harmonics), hence the record-length
+  // rule before the explanation as well as after its re-tests.
+  ApplyRecordLengthRule(duration_s, options.min_periods, d);
   JointExplanation joint =
       ExplainJointly(d->normalized, d->families, std::move(d->faults), ctx, dopt);
   d->faults = std::move(joint.ranked);
@@ -731,10 +733,10 @@ void ConfirmOuterRaceOnPrewhitened(const Record& record,
   for (auto& det : d->faults) {
     if (det.component != FaultComponent::kOuterRace || !det.detected) continue;
     det.detected = false;
-    det.reason =
-        "not claimed: the comb does not survive cepstrum pre-whitening (p = " + Fmt("%.2g", p) +
-        "): discrete lines at n Z f_c, the varying compliance of a healthy bearing (" + det.reason +
-        ")";
+    det.reason = "not claimed: the comb does not survive cepstrum pre-whitening (p = " +
+                 FormatNumber("%.2g", p) +
+                 "): discrete lines at n Z f_c, the varying compliance of a healthy bearing (" +
+                 det.reason + ")";
   }
   d->verdict = FirstDetectedVerdict(d->faults);
 }

@@ -8,6 +8,7 @@
 
 #include "core/constants.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "dsp/envelope.h"
 #include "identify/line_dft.h"
 #include "identify/load_zone.h"
@@ -15,12 +16,6 @@
 
 namespace spallkit::identify {
 namespace {
-
-std::string Fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 // Chord of a spall crossed in dt at spin rate f_s on a roller of diameter d.
 double ChordOf(double dt, double spin_hz, double d) {
@@ -80,10 +75,11 @@ Identification Identify(const Record& record,
   if (!(shaft_hz > 0)) throw InputError("identify: shaft speed must be > 0");
   if (diagnosis.samples != static_cast<int>(record.samples.size()) ||
       std::abs(diagnosis.sample_rate_hz - record.sample_rate_hz) > 1e-9 * record.sample_rate_hz)
-    throw InputError(
-        "identify: the diagnosis is of another record (" + std::to_string(diagnosis.samples) +
-        " samples at " + Fmt("%g", diagnosis.sample_rate_hz) + " Hz, the record has " +
-        std::to_string(record.samples.size()) + " at " + Fmt("%g", record.sample_rate_hz) + " Hz)");
+    throw InputError("identify: the diagnosis is of another record (" +
+                     std::to_string(diagnosis.samples) + " samples at " +
+                     FormatNumber("%g", diagnosis.sample_rate_hz) + " Hz, the record has " +
+                     std::to_string(record.samples.size()) + " at " +
+                     FormatNumber("%g", record.sample_rate_hz) + " Hz)");
   Identification id;
   id.diagnosis = diagnosis;
   id.options = options;
@@ -139,7 +135,7 @@ Identification Identify(const Record& record,
   const bool enough_turns = id.cage_revolutions >= options.min_cage_revolutions;
   if (!enough_turns) {
     count_reason =
-        ("count: not identifiable (the record holds " + Fmt("%.1f", id.cage_revolutions) +
+        ("count: not identifiable (the record holds " + FormatNumber("%.1f", id.cage_revolutions) +
          " cage revolutions, " + std::to_string(options.min_cage_revolutions) + " needed)");
   } else {
     const int samples_per_turn = static_cast<int>(rate / id.cage_hz);
@@ -168,7 +164,7 @@ Identification Identify(const Record& record,
            "average: the impacts are not load-modulated)");
     } else if (cf.probability[k] < options.min_count_probability) {
       count_reason = ("count: uncertain (most probable " + std::to_string(k) +
-                      " with P = " + Fmt("%.2f", cf.probability[k]) + ")");
+                      " with P = " + FormatNumber("%.2f", cf.probability[k]) + ")");
     } else if (disagree) {
       count_reason = ("count: not identifiable (cage average says " +
                       std::to_string(argmax(cf.probability_cage)) + ", sidebands say " +
@@ -263,26 +259,27 @@ Identification Identify(const Record& record,
     why = "width: not identifiable (" + wf.message + ")";
   } else if (wf.delay_power_significance < options.min_delay_significance) {
     why = "width: not identifiable (no entry event resolved before the impacts: significance " +
-          Fmt("%.1f", wf.delay_power_significance) + ")";
+          FormatNumber("%.1f", wf.delay_power_significance) + ")";
   } else if (wf.best.delay_power > options.max_entry_power_ratio * wf.best.zero_lag_power) {
-    why = "width: not identifiable (the second event at " + Fmt("%.2f", wf.best.delay_s * 1e3) +
+    why = "width: not identifiable (the second event at " +
+          FormatNumber("%.2f", wf.best.delay_s * 1e3) +
           " ms is as strong as the impacts themselves: another roller's impacts, not an entry)";
   } else if (wf.delay_high_s < dt_res) {
-    why = "width: below what the record resolves (< " + Fmt("%.2f", id.width_resolution_m * 1e3) +
-          " mm)";
+    why = "width: below what the record resolves (< " +
+          FormatNumber("%.2f", id.width_resolution_m * 1e3) + " mm)";
   } else if (wf.delay_low_s < dt_res) {
     why =
         "width: not identifiable (the entry-exit delay is not resolved from the impact's own "
         "ring-down: the interval reaches below " +
-        Fmt("%.2f", id.width_resolution_m * 1e3) + " mm)";
+        FormatNumber("%.2f", id.width_resolution_m * 1e3) + " mm)";
   } else {
     id.width_m = to_width(wf.best.delay_s, scale);
     id.width_low_m = to_width(wf.delay_low_s, scale * (1.0 + spread));
     id.width_high_m = to_width(wf.delay_high_s, scale * (1.0 - spread));
     const double half = 0.5 * (id.width_high_m - id.width_low_m);
     if (half > options.max_width_relative_half_interval * id.width_m) {
-      why = "width: not identifiable (90 % interval " + Fmt("%.2f", id.width_low_m * 1e3) + "-" +
-            Fmt("%.2f", id.width_high_m * 1e3) + " mm is too wide)";
+      why = "width: not identifiable (90 % interval " + FormatNumber("%.2f", id.width_low_m * 1e3) +
+            "-" + FormatNumber("%.2f", id.width_high_m * 1e3) + " mm is too wide)";
       id.width_m = id.width_low_m = id.width_high_m = 0.0;
     } else {
       id.width_identifiable = true;
@@ -294,33 +291,35 @@ Identification Identify(const Record& record,
 std::string Identification::BriefReport() const {
   std::ostringstream os;
   os << "diagnosis: " << dsp::VerdictName(diagnosis.verdict) << " (band "
-     << Fmt("%.0f", diagnosis.band.low_hz) << "-" << Fmt("%.0f", diagnosis.band.high_hz)
-     << " Hz)\n";
+     << FormatNumber("%.0f", diagnosis.band.low_hz) << "-"
+     << FormatNumber("%.0f", diagnosis.band.high_hz) << " Hz)\n";
   if (roller_signature)
-    os << "rates: f_c " << Fmt("%.4f", cage_hz) << " Hz, f_b " << Fmt("%.3f", 2.0 * spin_hz)
-       << " Hz (refined), " << Fmt("%.1f", cage_revolutions) << " cage revolutions\n";
+    os << "rates: f_c " << FormatNumber("%.4f", cage_hz) << " Hz, f_b "
+       << FormatNumber("%.3f", 2.0 * spin_hz) << " Hz (refined), "
+       << FormatNumber("%.1f", cage_revolutions) << " cage revolutions\n";
   if (count_identifiable) {
-    os << "defective rollers: " << count << " (P = " << Fmt("%.3f", probabilities[count])
-       << "; cage average " << Fmt("%.3f", probabilities_cage[count]);
+    os << "defective rollers: " << count << " (P = " << FormatNumber("%.3f", probabilities[count])
+       << "; cage average " << FormatNumber("%.3f", probabilities_cage[count]);
     if (!probabilities_sidebands.empty())
-      os << ", sidebands " << Fmt("%.3f", probabilities_sidebands[count]);
+      os << ", sidebands " << FormatNumber("%.3f", probabilities_sidebands[count]);
     os << ")\n  positions in the cage:";
-    for (double p : positions_deg) os << " " << Fmt("%.1f", p);
-    os << " deg (P = " << Fmt("%.2f", position_probability) << ")\n";
+    for (double p : positions_deg) os << " " << FormatNumber("%.1f", p);
+    os << " deg (P = " << FormatNumber("%.2f", position_probability) << ")\n";
   } else {
     os << "defective rollers: not identified\n";
   }
   if (!probabilities.empty()) {
     os << "  P(K):";
     for (size_t k = 0; k < probabilities.size() && k <= 5; ++k)
-      os << " " << k << ":" << Fmt("%.3g", probabilities[k]);
-    os << "  (fit chi2 scale " << Fmt("%.2f", count_fit.chi2_scale) << " / "
-       << Fmt("%.2f", count_fit.chi2_scale_sidebands) << ")\n";
+      os << " " << k << ":" << FormatNumber("%.3g", probabilities[k]);
+    os << "  (fit chi2 scale " << FormatNumber("%.2f", count_fit.chi2_scale) << " / "
+       << FormatNumber("%.2f", count_fit.chi2_scale_sidebands) << ")\n";
   }
   if (width_identifiable)
-    os << "width: " << Fmt("%.2f", width_m * 1e3) << " mm (90 % interval "
-       << Fmt("%.2f", width_low_m * 1e3) << "-" << Fmt("%.2f", width_high_m * 1e3)
-       << " mm; entry-exit delay " << Fmt("%.3f", width_fit.best.delay_s * 1e3) << " ms)\n";
+    os << "width: " << FormatNumber("%.2f", width_m * 1e3) << " mm (90 % interval "
+       << FormatNumber("%.2f", width_low_m * 1e3) << "-" << FormatNumber("%.2f", width_high_m * 1e3)
+       << " mm; entry-exit delay " << FormatNumber("%.3f", width_fit.best.delay_s * 1e3)
+       << " ms)\n";
   else
     os << "width: not identified\n";
   for (const auto& r : reasons) os << "  " << r << "\n";

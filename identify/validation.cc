@@ -9,6 +9,7 @@
 
 #include "core/constants.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "core/hdf5.h"
 #include "core/record_io.h"
 #include "dsp/diagnose.h"
@@ -18,12 +19,6 @@
 
 namespace spallkit::identify {
 namespace {
-
-std::string Fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 // SplitMix64 (portable: the same noise with every standard library) and Box-Muller.
 class NormalStream {
@@ -222,7 +217,7 @@ std::string ValidationReport::Summary() const {
   std::ostringstream os;
   for (auto it = by_snr.rbegin(); it != by_snr.rend(); ++it) {
     const auto& rs = it->second;
-    os << "SNR " << (std::isfinite(it->first) ? Fmt("%g dB", it->first) : "clean") << ": "
+    os << "SNR " << (std::isfinite(it->first) ? FormatNumber("%g dB", it->first) : "clean") << ": "
        << rs.size() << " records\n";
     int max_true = 0, max_stated = 0;
     for (const auto* r : rs) {
@@ -231,7 +226,7 @@ std::string ValidationReport::Summary() const {
     }
     max_stated = std::max(max_stated, max_true);
     os << "  count confusion (rows truth, columns stated):\n    truth  refused";
-    for (int k = 0; k <= max_stated; ++k) os << Fmt("%6.0f", k);
+    for (int k = 0; k <= max_stated; ++k) os << FormatNumber("%6.0f", k);
     os << "\n";
     int spalled = 0, right = 0, wrong = 0, refused = 0, positions = 0;
     for (int t = 0; t <= max_true; ++t) {
@@ -256,8 +251,8 @@ std::string ValidationReport::Summary() const {
         }
       }
       if (n == 0) continue;
-      os << Fmt("    %5.0f", t) << Fmt("  %7.0f", ref);
-      for (int v : row) os << Fmt("%6.0f", v);
+      os << FormatNumber("    %5.0f", t) << FormatNumber("  %7.0f", ref);
+      for (int v : row) os << FormatNumber("%6.0f", v);
       os << "\n";
     }
     int healthy_stated = 0;
@@ -276,8 +271,9 @@ std::string ValidationReport::Summary() const {
             r->count_probability < edges[b + 1])
           ++n, ok += r->count == r->true_count, p += r->count_probability;
       if (n)
-        os << Fmt(" [%.2f", edges[b]) << Fmt("-%.2f): ", std::min(1.0, edges[b + 1])) << n << ", "
-           << ok << ", " << Fmt("%.3f", p / n) << ";";
+        os << FormatNumber(" [%.2f", edges[b])
+           << FormatNumber("-%.2f): ", std::min(1.0, edges[b + 1])) << n << ", " << ok << ", "
+           << FormatNumber("%.3f", p / n) << ";";
     }
     os << "\n";
     // Width.
@@ -299,14 +295,14 @@ std::string ValidationReport::Summary() const {
       const double median = errors[errors.size() / 2];
       const double p90 = errors[std::min(errors.size() - 1, (errors.size() * 9) / 10)];
       os << ": within 15 % " << within << ", 90 % interval covers the truth " << covered
-         << ", relative error median " << Fmt("%.1f %%", 100 * median) << ", 90th percentile "
-         << Fmt("%.1f %%", 100 * p90);
+         << ", relative error median " << FormatNumber("%.1f %%", 100 * median)
+         << ", 90th percentile " << FormatNumber("%.1f %%", 100 * p90);
     }
     os << "\n";
     double cpu = 0.0, secs = 0.0;
     for (const auto* r : rs) cpu += r->cpu_s, secs += r->record_s;
     os << "  CPU (diagnosis + identification, one thread): "
-       << Fmt("%.2f s per record second\n", secs > 0 ? cpu / secs : 0.0);
+       << FormatNumber("%.2f s per record second\n", secs > 0 ? cpu / secs : 0.0);
   }
   return os.str();
 }
@@ -323,7 +319,7 @@ std::string ValidationReport::ToCsv() const {
     std::string out;
     for (size_t i = 0; i < v.size(); ++i) {
       if (i) out += ';';
-      out += Fmt("%.6g", v[i]);
+      out += FormatNumber("%.6g", v[i]);
     }
     return out;
   };
@@ -338,20 +334,23 @@ std::string ValidationReport::ToCsv() const {
     const double p_true = r.true_count < static_cast<int>(r.probabilities.size())
                               ? r.probabilities[r.true_count]
                               : 0.0;
-    os << r.file << "," << (std::isfinite(r.snr_db) ? Fmt("%g", r.snr_db) : "inf") << ","
-       << r.true_count << "," << slots << "," << Fmt("%.4f", r.true_width_m * 1e3) << ","
-       << Fmt("%.1f", r.speed_rpm) << "," << Fmt("%.0f", r.load_n) << "," << r.verdict << ","
-       << r.count_stated << "," << r.count << "," << Fmt("%.4g", r.count_probability) << ","
-       << Fmt("%.4g", p_true) << "," << r.count_cage << "," << Fmt("%.4g", r.p_cage) << ","
-       << r.count_sidebands << "," << Fmt("%.4g", r.p_sidebands) << ","
-       << Fmt("%.3g", r.chi2_scale_cage) << "," << Fmt("%.3g", r.chi2_scale_sidebands) << ","
-       << r.positions_right << "," << r.positions_mirrored << "," << r.width_stated << ","
-       << Fmt("%.4f", r.width_m * 1e3) << "," << Fmt("%.4f", r.width_low_m * 1e3) << ","
-       << Fmt("%.4f", r.width_high_m * 1e3) << "," << Fmt("%.4f", r.true_delay_s * 1e3) << ","
-       << Fmt("%.4f", r.delay_s * 1e3) << "," << Fmt("%.4f", r.delay_low_s * 1e3) << ","
-       << Fmt("%.4f", r.delay_high_s * 1e3) << "," << Fmt("%.3g", r.delay_significance) << ","
-       << Fmt("%.3f", r.cpu_s) << "," << joined(r.log_evidence_cage) << ","
-       << joined(r.log_evidence_sidebands) << ",\"" << reasons << "\"\n";
+    os << r.file << "," << (std::isfinite(r.snr_db) ? FormatNumber("%g", r.snr_db) : "inf") << ","
+       << r.true_count << "," << slots << "," << FormatNumber("%.4f", r.true_width_m * 1e3) << ","
+       << FormatNumber("%.1f", r.speed_rpm) << "," << FormatNumber("%.0f", r.load_n) << ","
+       << r.verdict << "," << r.count_stated << "," << r.count << ","
+       << FormatNumber("%.4g", r.count_probability) << "," << FormatNumber("%.4g", p_true) << ","
+       << r.count_cage << "," << FormatNumber("%.4g", r.p_cage) << "," << r.count_sidebands << ","
+       << FormatNumber("%.4g", r.p_sidebands) << "," << FormatNumber("%.3g", r.chi2_scale_cage)
+       << "," << FormatNumber("%.3g", r.chi2_scale_sidebands) << "," << r.positions_right << ","
+       << r.positions_mirrored << "," << r.width_stated << ","
+       << FormatNumber("%.4f", r.width_m * 1e3) << "," << FormatNumber("%.4f", r.width_low_m * 1e3)
+       << "," << FormatNumber("%.4f", r.width_high_m * 1e3) << ","
+       << FormatNumber("%.4f", r.true_delay_s * 1e3) << "," << FormatNumber("%.4f", r.delay_s * 1e3)
+       << "," << FormatNumber("%.4f", r.delay_low_s * 1e3) << ","
+       << FormatNumber("%.4f", r.delay_high_s * 1e3) << ","
+       << FormatNumber("%.3g", r.delay_significance) << "," << FormatNumber("%.3f", r.cpu_s) << ","
+       << joined(r.log_evidence_cage) << "," << joined(r.log_evidence_sidebands) << ",\"" << reasons
+       << "\"\n";
   }
   return os.str();
 }

@@ -33,9 +33,10 @@ struct LumpedOptions {
   // Stable-step safety on the roller contacts (the FE models use the solver's).
   double time_step_safety = 0.45;
   // Sensor path: length of the FE housing's impulse responses the sensor channels convolve
-  // the rollers' force with (0: the sensor reads the rigid ring's motion times its static
-  // gain), and their sample rate.
-  double sensor_response_s = 8e-3;
+  // the rollers' force with (e.g. 8e-3), and their sample rate. Off (0, the sensor reads the
+  // rigid ring's motion times its static gain) by default: with it, a spalled roller's record
+  // loses the roller comb the diagnosis finds (docs/BEARING_MODEL.md, "The lumped model").
+  double sensor_response_s = 0;
   double sensor_sample_hz = 100e3;
 
   bool IsValid(std::string* error) const;

@@ -7,22 +7,17 @@
 
 #include "dsp/detection.h"
 #include "dsp/explain.h"
+#include "tests/dsp/spectral_test_signals.h"
 
 namespace spallkit::dsp {
 namespace {
 
 constexpr double kShaftHz = 29.5, kDf = 0.2;
 
-std::vector<double> NoisePower(int n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::exponential_distribution<double> e(1.0);
-  std::vector<double> p(n);
-  for (auto& v : p) v = e(rng);
-  return p;
-}
+using test_signals::NoisePower;
 
 void AddLine(std::vector<double>* power, double hz, double level) {
-  (*power)[static_cast<int>(std::lround(hz / kDf))] += level;
+  test_signals::AddLine(power, hz, kDf, level);
 }
 
 TEST(RaceSeparation, OuterRaceCombFeedingTheInnerRaceCombGoesFirst) {

@@ -60,4 +60,19 @@ inline std::vector<double> MakeGaussianNoise(int n, double std_dev, unsigned see
   return x;
 }
 
+// A power spectrum of white noise: independent unit-mean exponential bins (chi-squared with two
+// degrees of freedom, scaled), as a periodogram of Gaussian noise has.
+inline std::vector<double> NoisePower(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::exponential_distribution<double> e(1.0);
+  std::vector<double> p(n);
+  for (auto& v : p) v = e(rng);
+  return p;
+}
+
+// Adds `level` to the bin nearest `hz` of a spectrum with bins df_hz apart.
+inline void AddLine(std::vector<double>* power, double hz, double df_hz, double level) {
+  (*power)[static_cast<int>(std::lround(hz / df_hz))] += level;
+}
+
 }  // namespace spallkit::dsp::test_signals

@@ -87,7 +87,8 @@ class LoadLinePulse : public solver::ForceContributor {
 
 TEST(LumpedModelTest, SensorPathReproducesTheFeHousingUnderAnotherForce) {
   const Scene scene = LumpedScene({});
-  const BearingModelOptions options;
+  BearingModelOptions options;
+  options.lumped.sensor_response_s = 8e-3;  // the sensor path is opt-in
   const HousingFit fit = FitHousing(scene, options);
   BearingModelOptions housing_only = options;
   housing_only.housing_only = true;
