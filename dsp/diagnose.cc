@@ -680,11 +680,7 @@ void ExplainAndConclude(const DetectionContext& ctx,
                         const DiagnoseOptions& options,
                         Diagnosis* d) {
   // Joint explanation: the best family claims the lines it explains, the others are re-tested on
-  // what is left; ranked = explanation order, then the undetected by p-value. A family the record
-  // is too short to claim claims no lines either (a short record's cage comb would otherwise
-  // explain away a roller comb whose lines sit near its harmonics), hence the record-length
-  // rule before the explanation as well as after its re-tests.
-  ApplyRecordLengthRule(duration_s, options.min_periods, d);
+  // what is left; ranked = explanation order, then the undetected by p-value.
   JointExplanation joint =
       ExplainJointly(d->normalized, d->families, std::move(d->faults), ctx, dopt);
   d->faults = std::move(joint.ranked);

@@ -122,6 +122,40 @@ struct Bounds {
   double min_delay, max_delay, min_rise, max_rise, min_decay, max_decay, noise_correlation;
 };
 
+// The correlation model as a Ceres problem on (lin, delay, shape) = ((c, P_0, P_1, P_noise),
+// delay, (rise, decay, delay rise - rise)), with the bounds every fit of it keeps: P_0 and
+// P_noise >= 0 and the shape within `bd`.
+void AddCorrelationModel(const EnvelopeCorrelation& r,
+                         int lags,
+                         const Bounds& bd,
+                         double noise_correlation_s,
+                         double* lin,
+                         double* delay,
+                         double* shape,
+                         ceres::Problem* problem) {
+  auto* cost = new ceres::AutoDiffCostFunction<CorrelationResidual, ceres::DYNAMIC, 4, 1, 3>(
+      new CorrelationResidual{&r, lags, noise_correlation_s}, lags);
+  problem->AddResidualBlock(cost, nullptr, lin, delay, shape);
+  problem->SetParameterLowerBound(lin, 1, 0.0);
+  problem->SetParameterLowerBound(lin, 3, 0.0);
+  problem->SetParameterLowerBound(shape, 0, bd.min_rise);
+  problem->SetParameterUpperBound(shape, 0, bd.max_rise);
+  problem->SetParameterLowerBound(shape, 1, bd.min_decay);
+  problem->SetParameterUpperBound(shape, 1, bd.max_decay);
+  problem->SetParameterLowerBound(shape, 2, 0.0);
+  problem->SetParameterUpperBound(shape, 2, bd.max_rise);
+}
+
+ceres::Solver::Summary SolveQuietly(int max_iterations, ceres::Problem* problem) {
+  ceres::Solver::Options so;
+  so.max_num_iterations = max_iterations;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, problem, &summary);
+  return summary;
+}
+
 EntryExitFit Fit(const EnvelopeCorrelation& r,
                  int lags,
                  const Bounds& bd,
@@ -166,26 +200,11 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
   double delay[1] = {best.delay_s};
   double shape[3] = {best.rise_s, best.decay_s, std::max(0.0, best.delay_rise_s - best.rise_s)};
   ceres::Problem problem;
-  auto* cost = new ceres::AutoDiffCostFunction<CorrelationResidual, ceres::DYNAMIC, 4, 1, 3>(
-      new CorrelationResidual{&r, lags, best.noise_correlation_s}, lags);
-  problem.AddResidualBlock(cost, nullptr, lin, delay, shape);
-  problem.SetParameterLowerBound(lin, 1, 0.0);
+  AddCorrelationModel(r, lags, bd, best.noise_correlation_s, lin, delay, shape, &problem);
   problem.SetParameterLowerBound(lin, 2, 0.0);
-  problem.SetParameterLowerBound(lin, 3, 0.0);
   problem.SetParameterLowerBound(delay, 0, bd.min_delay);
   problem.SetParameterUpperBound(delay, 0, bd.max_delay);
-  problem.SetParameterLowerBound(shape, 0, bd.min_rise);
-  problem.SetParameterUpperBound(shape, 0, bd.max_rise);
-  problem.SetParameterLowerBound(shape, 1, bd.min_decay);
-  problem.SetParameterUpperBound(shape, 1, bd.max_decay);
-  problem.SetParameterLowerBound(shape, 2, 0.0);
-  problem.SetParameterUpperBound(shape, 2, bd.max_rise);
-  ceres::Solver::Options so;
-  so.max_num_iterations = max_iterations;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
+  SolveQuietly(max_iterations, &problem);
   EntryExitFit f;
   f.offset = lin[0];
   f.zero_lag_power = lin[1];
@@ -223,26 +242,10 @@ double NullChi2(const EnvelopeCorrelation& r,
   double delay[1] = {best.delay_s};
   double shape[3] = {best.rise_s, best.decay_s, std::max(0.0, best.delay_rise_s - best.rise_s)};
   ceres::Problem problem;
-  auto* cost = new ceres::AutoDiffCostFunction<CorrelationResidual, ceres::DYNAMIC, 4, 1, 3>(
-      new CorrelationResidual{&r, lags, best.noise_correlation_s}, lags);
-  problem.AddResidualBlock(cost, nullptr, lin, delay, shape);
+  AddCorrelationModel(r, lags, bd, best.noise_correlation_s, lin, delay, shape, &problem);
   problem.SetManifold(lin, new ceres::SubsetManifold(4, {2}));
   problem.SetParameterBlockConstant(delay);
-  problem.SetParameterLowerBound(lin, 1, 0.0);
-  problem.SetParameterLowerBound(lin, 3, 0.0);
-  problem.SetParameterLowerBound(shape, 0, bd.min_rise);
-  problem.SetParameterUpperBound(shape, 0, bd.max_rise);
-  problem.SetParameterLowerBound(shape, 1, bd.min_decay);
-  problem.SetParameterUpperBound(shape, 1, bd.max_decay);
-  problem.SetParameterLowerBound(shape, 2, 0.0);
-  problem.SetParameterUpperBound(shape, 2, bd.max_rise);
-  ceres::Solver::Options so;
-  so.max_num_iterations = 50;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
-  return 2.0 * summary.final_cost;
+  return 2.0 * SolveQuietly(50, &problem).final_cost;
 }
 
 // Mean and pooled standard error over blocks (a subset `use` of them, with repetition).
