@@ -463,7 +463,11 @@ std::string LumpedBearingModel::SaveState() const {
                    race_.x_,
                    race_.y_,
                    race_.vx_,
-                   race_.vy_})
+                   race_.vy_,
+                   ring_v_old_[0],
+                   ring_v_old_[1],
+                   spring_half_,
+                   damping_half_})
     out.Put(x);
   out.Put<std::int64_t>(step_);
   out.Put<std::uint8_t>(started_ ? 1 : 0);
@@ -485,7 +489,11 @@ void LumpedBearingModel::LoadState(const std::string& bytes) {
                     &race_.x_,
                     &race_.y_,
                     &race_.vx_,
-                    &race_.vy_})
+                    &race_.vy_,
+                    &ring_v_old_[0],
+                    &ring_v_old_[1],
+                    &spring_half_,
+                    &damping_half_})
     *x = in.Get<double>();
   step_ = static_cast<long>(in.Get<std::int64_t>());
   started_ = in.Get<std::uint8_t>() != 0;
