@@ -6,6 +6,8 @@
 #include <cstring>
 #include <vector>
 
+#include "core/format.h"
+
 namespace spallkit::apps {
 namespace {
 
@@ -117,10 +119,6 @@ std::string OneLine(const std::string& message, std::size_t max_chars) {
   return s;
 }
 
-std::string Number(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  return buf;
-}
+std::string Number(double value) { return FormatNumber("%.6g", value); }
 
 }  // namespace spallkit::apps

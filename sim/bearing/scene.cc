@@ -10,6 +10,7 @@
 
 #include "core/constants.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "sim/bearing/scene_limits.h"
 
 namespace spallkit::sim {
@@ -18,12 +19,6 @@ namespace {
 constexpr double kMm = 1e-3;
 
 bool IsDigit(char c) { return c >= '0' && c <= '9'; }
-
-std::string Fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 // "file:line" for a node parsed from a file, "--set" for a value from an override, the file
 // name alone for a default that has no source.
@@ -59,9 +54,9 @@ struct Range {
     return true;
   }
   std::string Describe() const {
-    if (hi == HUGE_VAL) return std::string(lo_open ? "> " : ">= ") + Fmt(lo);
-    return std::string("in ") + (lo_open ? "(" : "[") + Fmt(lo) + ", " + Fmt(hi) +
-           (hi_open ? ")" : "]");
+    if (hi == HUGE_VAL) return std::string(lo_open ? "> " : ">= ") + FormatNumber("%.6g", lo);
+    return std::string("in ") + (lo_open ? "(" : "[") + FormatNumber("%.6g", lo) + ", " +
+           FormatNumber("%.6g", hi) + (hi_open ? ")" : "]");
   }
 };
 const Range kPositive{0.0, HUGE_VAL, true, false};
@@ -132,7 +127,8 @@ class Section {
       v = static_cast<double>(i->get());
     else
       Fail(key, std::string("expected a number, got ") + TypeName(*n));
-    if (!range.Contains(v)) Fail(key, "must be " + range.Describe() + " (got " + Fmt(v) + ")");
+    if (!range.Contains(v))
+      Fail(key, "must be " + range.Describe() + " (got " + FormatNumber("%.6g", v) + ")");
     return v;
   }
 
@@ -279,7 +275,7 @@ void ReadGeometry(Section s, SceneGeometry* g) {
   g->ring_width_m = s.Number("ring_width_mm", 15.0, kPositive) * kMm;
   if (!(g->ring_width_m >= g->thickness_m))
     s.Fail("ring_width_mm",
-           "must be >= thickness_mm (" + Fmt(g->thickness_m / kMm) +
+           "must be >= thickness_mm (" + FormatNumber("%.6g", g->thickness_m / kMm) +
                " mm): the rings are at least as wide as the rollers' contact");
   g->diametral_clearance_m = s.Number("diametral_clearance_mm", 0.02, {0.0, 1.0}) * kMm;
   g->pocket_clearance_m = s.Number("pocket_clearance_mm", 0.2, {0.0, 5.0}) * kMm;
@@ -307,12 +303,12 @@ void ReadGeometry(Section s, SceneGeometry* g) {
     s.Fail("pitch_diameter_mm", "must be the mean of the raceway diameters");
   if (!(g->outer_ring_outer_diameter_m > b.outer_raceway_diameter_m + 0.5e-3))
     s.Fail("outer_ring_outer_diameter_mm",
-           "must exceed the outer raceway diameter (" + Fmt(b.outer_raceway_diameter_m / kMm) +
-               " mm) by at least 0.5 mm");
+           "must exceed the outer raceway diameter (" +
+               FormatNumber("%.6g", b.outer_raceway_diameter_m / kMm) + " mm) by at least 0.5 mm");
   if (!(g->inner_ring_bore_diameter_m < b.inner_raceway_diameter_m - 0.5e-3))
     s.Fail("inner_ring_bore_diameter_mm",
            "must be smaller than the inner raceway diameter (" +
-               Fmt(b.inner_raceway_diameter_m / kMm) + " mm) by at least 0.5 mm");
+               FormatNumber("%.6g", b.inner_raceway_diameter_m / kMm) + " mm) by at least 0.5 mm");
   if (!(g->cage_inner_diameter_m > b.inner_raceway_diameter_m && g->cage_inner_diameter_m < dm))
     s.Fail("cage_inner_diameter_mm", "must lie between the inner raceway and pitch diameters");
   if (!(g->cage_outer_diameter_m < b.outer_raceway_diameter_m && g->cage_outer_diameter_m > dm))
@@ -370,16 +366,18 @@ Defect ReadDefect(Section s, const SceneGeometry& g) {
   s.RejectUnknown();
   if (!(d.width_m < roller_d))
     s.Fail("width_mm",
-           "spall wider than the roller (" + Fmt(d.width_m / kMm) + " mm >= roller diameter " +
-               Fmt(roller_d / kMm) + " mm)");
+           "spall wider than the roller (" + FormatNumber("%.6g", d.width_m / kMm) +
+               " mm >= roller diameter " + FormatNumber("%.6g", roller_d / kMm) + " mm)");
   const double r = 0.5 * roller_d;
   const double sag = r - std::sqrt(r * r - 0.25 * d.width_m * d.width_m);
   if (!(d.depth_m > sag))
     s.Fail("depth_mm",
-           "must exceed " + Fmt(sag / kMm) + " mm, the rise of the roller surface over the " +
+           "must exceed " + FormatNumber("%.6g", sag / kMm) +
+               " mm, the rise of the roller surface over the " +
                "spall mouth (else the flat bottom lies above the mouth)");
   if (!(d.depth_m < 0.5 * r))
-    s.Fail("depth_mm", "must be below half the roller radius (" + Fmt(0.5 * r / kMm) + " mm)");
+    s.Fail("depth_mm",
+           "must be below half the roller radius (" + FormatNumber("%.6g", 0.5 * r / kMm) + " mm)");
   return d;
 }
 
@@ -483,8 +481,9 @@ void ReadMesh(Section s,
     const auto& d = defects[i];
     if (d.width_m < 1.5 * mesh->contact_size_m || d.depth_m < mesh->contact_size_m)
       s.Fail("contact_size_mm",
-             "too coarse for defects." + std::to_string(i) + " (" + Fmt(d.width_m / kMm) + " x " +
-                 Fmt(d.depth_m / kMm) +
+             "too coarse for defects." + std::to_string(i) + " (" +
+                 FormatNumber("%.6g", d.width_m / kMm) + " x " +
+                 FormatNumber("%.6g", d.depth_m / kMm) +
                  " mm): need width >= 1.5 and depth >= 1 element; refine mesh.size_mm");
   }
 }

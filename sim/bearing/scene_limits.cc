@@ -7,17 +7,11 @@
 #include <sstream>
 
 #include "core/constants.h"
+#include "core/format.h"
 #include "sim/quasistatic/harris_jones.h"
 
 namespace spallkit::sim {
 namespace {
-
-std::string Fmt(double v, int digits = 3) {
-  std::ostringstream os;
-  os.precision(digits);
-  os << v;
-  return os.str();
-}
 
 double PhysicalMemoryBytes() {
   const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
@@ -105,8 +99,9 @@ std::optional<SceneLimitViolation> FindSceneLimitViolation(const Scene& scene,
                                                            const SceneLimits& limits) {
   if (!(scene.run.duration_s <= limits.max_duration_s))
     return SceneLimitViolation{"run.duration_s",
-                               "must be at most " + Fmt(limits.max_duration_s) +
-                                   " s of simulated time (got " + Fmt(scene.run.duration_s) + ")"};
+                               "must be at most " + FormatNumber("%.3g", limits.max_duration_s) +
+                                   " s of simulated time (got " +
+                                   FormatNumber("%.3g", scene.run.duration_s) + ")"};
   const double max_bytes =
       limits.max_result_bytes > 0 ? limits.max_result_bytes : 0.5 * PhysicalMemoryBytes();
   const double bytes = EstimatedResultBytes(scene);
@@ -114,32 +109,34 @@ std::optional<SceneLimitViolation> FindSceneLimitViolation(const Scene& scene,
     return SceneLimitViolation{
         "run.output_rate_hz",
         "run.duration_s x run.output_rate_hz = " +
-            Fmt(std::floor(scene.run.duration_s * scene.run.output_rate_hz) + 1) +
-            " samples per output need about " + Fmt(bytes / 1e9) +
-            " GB for the results, more than the " + Fmt(max_bytes / 1e9) +
+            FormatNumber("%.3g", std::floor(scene.run.duration_s * scene.run.output_rate_hz) + 1) +
+            " samples per output need about " + FormatNumber("%.3g", bytes / 1e9) +
+            " GB for the results, more than the " + FormatNumber("%.3g", max_bytes / 1e9) +
             " GB allowed (half of this machine's memory); lower the rate or the duration"};
   const double resolved_hz = ResolvedRateHz(scene);
   if (!(scene.run.output_rate_hz <= resolved_hz))
     return SceneLimitViolation{
         "run.output_rate_hz",
-        Fmt(scene.run.output_rate_hz) +
+        FormatNumber("%.3g", scene.run.output_rate_hz) +
             " Hz is above what the mesh resolves: wave speed / "
             "element size = " +
-            Fmt(resolved_hz) +
+            FormatNumber("%.3g", resolved_hz) +
             " Hz (the simulation's own step rate is of that order; samples would repeat)"};
   const double elements = EstimatedElements(scene);
   if (!(elements <= limits.max_elements))
     return SceneLimitViolation{"mesh.size_mm",
-                               "about " + Fmt(elements) + " elements at " +
-                                   Fmt(scene.mesh.size_m * 1e3) + " mm, more than " +
-                                   Fmt(limits.max_elements) + "; use a coarser mesh"};
+                               "about " + FormatNumber("%.3g", elements) + " elements at " +
+                                   FormatNumber("%.3g", scene.mesh.size_m * 1e3) +
+                                   " mm, more than " + FormatNumber("%.3g", limits.max_elements) +
+                                   "; use a coarser mesh"};
   const double stress = PeakContactStress(scene);
   if (!(stress <= limits.max_contact_stress_pa))
     return SceneLimitViolation{
         "operation.radial_load_n",
-        Fmt(scene.operation.radial_load_n) + " N gives a Hertz contact stress of " +
-            Fmt(stress / 1e9) + " GPa at the most loaded roller, above " +
-            Fmt(limits.max_contact_stress_pa / 1e9) +
+        FormatNumber("%.3g", scene.operation.radial_load_n) +
+            " N gives a Hertz contact stress of " + FormatNumber("%.3g", stress / 1e9) +
+            " GPa at the most loaded roller, above " +
+            FormatNumber("%.3g", limits.max_contact_stress_pa / 1e9) +
             " GPa (ISO 76 static load rating: the races deform plastically, the models are "
             "elastic)"};
   return std::nullopt;

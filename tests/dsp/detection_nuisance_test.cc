@@ -41,13 +41,19 @@ const LineEvidence& Harmonic(const FamilyDetection& d, int k) {
   throw std::logic_error("no harmonic");
 }
 
+// Noise with BPFO (400) and 2 x BPFO (200, on the shaft half order 6.5 f_r).
+std::vector<double> OuterRaceLines(double bpfo, unsigned seed) {
+  auto power = NoisePower(2000, seed);
+  AddLine(&power, bpfo, 400.0);
+  AddLine(&power, 2 * bpfo, 200.0);
+  return power;
+}
+
 TEST(DetectionNuisance, HarmonicOnAShaftHalfOrderCountsWhenItStandsOutOfTheShaftComb) {
   const FaultFamily outer = OuterRace();
   const double bpfo = outer.fundamental_hz;
   for (unsigned seed = 1; seed <= 5; ++seed) {
-    auto power = NoisePower(2000, seed);
-    AddLine(&power, bpfo, 400.0);
-    AddLine(&power, 2 * bpfo, 200.0);
+    auto power = OuterRaceLines(bpfo, seed);
     const auto s = NormalizeSpectrum(power, kDf);
     const FamilyDetection d = DetectFamily(s, outer, Context());
     const LineEvidence& h2 = Harmonic(d, 2);
@@ -68,9 +74,7 @@ TEST(DetectionNuisance, HarmonicOnAShaftHalfOrderIsNotEvidenceWhenTheShaftCombIs
   const FaultFamily outer = OuterRace();
   const double bpfo = outer.fundamental_hz;
   for (unsigned seed = 1; seed <= 5; ++seed) {
-    auto power = NoisePower(2000, seed);
-    AddLine(&power, bpfo, 400.0);
-    AddLine(&power, 2 * bpfo, 200.0);
+    auto power = OuterRaceLines(bpfo, seed);
     // Looseness: every half order carries a line as strong as the one on 2 x BPFO.
     for (int m = 1; m * 0.5 * kShaftHz < 450.0; ++m)
       if (std::abs(m * 0.5 * kShaftHz - 2 * bpfo) > 3.0) AddLine(&power, m * 0.5 * kShaftHz, 200.0);
