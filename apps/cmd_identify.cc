@@ -13,7 +13,7 @@
 #include "core/record_io.h"
 #include "dsp/diagnose.h"
 #include "identify/identify.h"
-#include "identify/identify_plots.h"
+#include "study/identification_plots.h"
 
 namespace {
 
@@ -62,7 +62,7 @@ int Run(const Opts& o) {
   dopt.kurtogram_map = !o.plot_dir.empty();
   const dsp::Diagnosis d = dsp::Diagnose(record, g, o.rpm / 60.0, dopt);
   const identify::Identification id = identify::Identify(record, g, o.rpm / 60.0, d, io);
-  if (!o.plot_dir.empty()) identify::WriteIdentificationPlots(id, o.plot_dir);
+  if (!o.plot_dir.empty()) study::WriteIdentificationPlots(id, o.plot_dir);
   if (o.json) {
     std::printf("%s\n", id.ToJson(2).c_str());
   } else {

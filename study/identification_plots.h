@@ -10,10 +10,10 @@
 
 #include "identify/identify.h"
 
-namespace spallkit::identify {
+namespace spallkit::study {
 
 // Writes the figures that apply (none without a roller signature). Creates dir. Throws
 // InputError when it cannot be written.
-void WriteIdentificationPlots(const Identification& id, const std::string& dir);
+void WriteIdentificationPlots(const identify::Identification& id, const std::string& dir);
 
-}  // namespace spallkit::identify
+}  // namespace spallkit::study

@@ -1,4 +1,4 @@
-#include "identify/identify_plots.h"
+#include "study/identification_plots.h"
 
 #include <cmath>
 #include <filesystem>
@@ -7,9 +7,9 @@
 #include "core/error.h"
 #include "plot/plot.h"
 
-namespace spallkit::identify {
+namespace spallkit::study {
 
-void WriteIdentificationPlots(const Identification& id, const std::string& dir) {
+void WriteIdentificationPlots(const identify::Identification& id, const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError("--plot-dir " + dir + ": cannot create (" + ec.message() + ")");
@@ -21,7 +21,7 @@ void WriteIdentificationPlots(const Identification& id, const std::string& dir) 
     p.title = "cage-synchronous average of the squared envelope";
     p.x_label = "cage phase (deg)";
     p.y_label = "squared envelope";
-    const CageAverage& a = id.cage_average;
+    const identify::CageAverage& a = id.cage_average;
     plot::LineSeries data, lo, hi;
     for (int i = 0; i < a.bins(); ++i) {
       const double x = a.BinCenterRad(i) * 180.0 / kPi;
@@ -41,7 +41,7 @@ void WriteIdentificationPlots(const Identification& id, const std::string& dir) 
     const int k = id.count_fit.MostProbable();
     for (int show : {1, k}) {
       if (show < 1 || show >= static_cast<int>(id.count_fit.best.size())) continue;
-      const HumpFit& f = id.count_fit.best[show];
+      const identify::HumpFit& f = id.count_fit.best[show];
       if (f.model.size() != static_cast<size_t>(a.bins())) continue;
       plot::LineSeries m;
       m.x = data.x;
@@ -55,7 +55,7 @@ void WriteIdentificationPlots(const Identification& id, const std::string& dir) 
     plot::WriteLinePlot(path("cage_average.png"), p);
   }
 
-  const SpinSidebands& sb = id.sidebands;
+  const identify::SpinSidebands& sb = id.sidebands;
   if (sb.harmonics > 0) {
     plot::LinePlot p;
     p.title = "f_c sidebands of the spin harmonics (|S| / noise)";
@@ -76,7 +76,7 @@ void WriteIdentificationPlots(const Identification& id, const std::string& dir) 
     plot::WriteLinePlot(path("sidebands.png"), p);
   }
 
-  const WidthFit& w = id.width_fit;
+  const identify::WidthFit& w = id.width_fit;
   if (w.usable && !w.best.model.empty()) {
     plot::LinePlot p;
     p.title = "load-zone autocorrelation of the squared envelope";
@@ -101,4 +101,4 @@ void WriteIdentificationPlots(const Identification& id, const std::string& dir) 
   }
 }
 
-}  // namespace spallkit::identify
+}  // namespace spallkit::study
