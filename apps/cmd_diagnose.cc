@@ -4,23 +4,17 @@
 #include <memory>
 #include <string>
 
-#include "apps/bearing_options.h"
 #include "apps/cli_guard.h"
 #include "apps/command.h"
+#include "apps/record_options.h"
 #include "core/error.h"
-#include "core/record_io.h"
 #include "dsp/diagnose.h"
 #include "study/diagnosis_plots.h"
 
 namespace {
 
 struct Opts {
-  std::string record;
-  spallkit::apps::BearingOptions bearing;
-  double rpm = 0.0;
-  double fs = 0.0;
-  CLI::Option* fs_option = nullptr;
-  std::string channel;
+  spallkit::apps::RecordInputOptions input;
   bool json = false;
   std::string plot_dir;
   bool prewhiten = false;
@@ -33,20 +27,13 @@ struct Opts {
 
 int Run(const Opts& o) {
   using namespace spallkit;
-  if (!(o.rpm > 0.0) || !std::isfinite(o.rpm))
-    throw InputError("--rpm must be > 0 (got " + spallkit::apps::Number(o.rpm) + ")");
-  if (o.fs_option && o.fs_option->count() > 0 && (!(o.fs > 0.0) || !std::isfinite(o.fs)))
-    throw InputError("--fs must be > 0 Hz (got " + std::to_string(o.fs) + ")");
+  o.input.Check();
   if (o.threads < 0 || o.threads > dsp::DiagnoseOptions::kMaxThreads)
     throw InputError("--threads must be in 0.." +
                      std::to_string(dsp::DiagnoseOptions::kMaxThreads) + " (got " +
                      std::to_string(o.threads) + ")");
-  const BearingGeometry g = o.bearing.Geometry();
-
-  spallkit::RecordOptions ro;
-  ro.sample_rate_hz = o.fs;
-  ro.channel = o.channel;
-  const spallkit::Record record = spallkit::ReadRecord(o.record, ro);
+  const BearingGeometry g = o.input.bearing.Geometry();
+  const Record record = o.input.Read();
 
   dsp::DiagnoseOptions opt;
   opt.harmonics = o.harmonics;
@@ -59,7 +46,7 @@ int Run(const Opts& o) {
   std::string error;
   if (!opt.IsValid(&error)) throw InputError(error);
 
-  const dsp::Diagnosis d = dsp::Diagnose(record, g, o.rpm / 60.0, opt);
+  const dsp::Diagnosis d = dsp::Diagnose(record, g, o.input.ShaftHz(), opt);
   if (!o.plot_dir.empty()) study::WriteDiagnosisPlots(d, record.samples, o.plot_dir);
   if (o.json) {
     std::printf("%s\n", d.ToJson(2).c_str());
@@ -76,11 +63,7 @@ spallkit::apps::Register reg(
     "Envelope-analysis fault diagnosis of a vibration record (CSV or HDF5)",
     [](CLI::App& sub) {
       auto o = std::make_shared<Opts>();
-      sub.add_option("record", o->record, "record file (.csv/.txt or .h5)")->required();
-      o->bearing.Add(sub);
-      sub.add_option("--rpm", o->rpm, "nominal shaft speed, rpm")->required();
-      o->fs_option = sub.add_option("--fs", o->fs, "sample rate, Hz (overrides the file)");
-      sub.add_option("--channel", o->channel, "column name / 0-based data column, or HDF5 path");
+      o->input.Add(sub);
       sub.add_flag("--json", o->json, "print one JSON object instead of the summary");
       sub.add_option("--plot-dir", o->plot_dir, "write ses.png, spectrogram.png, kurtogram.png");
       sub.add_flag("--prewhiten", o->prewhiten, "cepstrum pre-whitening before the analysis");

@@ -5,12 +5,11 @@
 #include <memory>
 #include <string>
 
-#include "apps/bearing_options.h"
 #include "apps/cli_guard.h"
 #include "apps/command.h"
+#include "apps/record_options.h"
 #include "core/constants.h"
 #include "core/error.h"
-#include "core/record_io.h"
 #include "dsp/diagnose.h"
 #include "identify/identify.h"
 #include "study/identification_plots.h"
@@ -18,12 +17,7 @@
 namespace {
 
 struct Opts {
-  std::string record;
-  spallkit::apps::BearingOptions bearing;
-  double rpm = 0.0;
-  double fs = 0.0;
-  CLI::Option* fs_option = nullptr;
-  std::string channel;
+  spallkit::apps::RecordInputOptions input;
   double load_n = 0.0;
   CLI::Option* load_option = nullptr;
   bool json = false;
@@ -35,21 +29,14 @@ struct Opts {
 
 int Run(const Opts& o) {
   using namespace spallkit;
-  if (!(o.rpm > 0.0) || !std::isfinite(o.rpm))
-    throw InputError("--rpm must be > 0 (got " + spallkit::apps::Number(o.rpm) + ")");
-  if (o.fs_option && o.fs_option->count() > 0 && (!(o.fs > 0.0) || !std::isfinite(o.fs)))
-    throw InputError("--fs must be > 0 Hz (got " + std::to_string(o.fs) + ")");
+  o.input.Check();
   if (o.load_option && o.load_option->count() > 0 &&
       (!(o.load_n > 0.0) || !std::isfinite(o.load_n)))
     throw InputError("--load-n must be > 0 N (got " + std::to_string(o.load_n) + ")");
   if (o.max_count != -1 && o.max_count < 1)
     throw InputError("--max-count must be >= 1 (got " + std::to_string(o.max_count) + ")");
-  const BearingGeometry g = o.bearing.Geometry();
-
-  RecordOptions ro;
-  ro.sample_rate_hz = o.fs;
-  ro.channel = o.channel;
-  const Record record = ReadRecord(o.record, ro);
+  const BearingGeometry g = o.input.bearing.Geometry();
+  const Record record = o.input.Read();
 
   identify::IdentifyOptions io;
   if (o.load_option && o.load_option->count() > 0) io.radial_load_n = o.load_n;
@@ -60,8 +47,8 @@ int Run(const Opts& o) {
   if (!io.IsValid(&error)) throw InputError(error);
   dsp::DiagnoseOptions dopt;
   dopt.kurtogram_map = !o.plot_dir.empty();
-  const dsp::Diagnosis d = dsp::Diagnose(record, g, o.rpm / 60.0, dopt);
-  const identify::Identification id = identify::Identify(record, g, o.rpm / 60.0, d, io);
+  const dsp::Diagnosis d = dsp::Diagnose(record, g, o.input.ShaftHz(), dopt);
+  const identify::Identification id = identify::Identify(record, g, o.input.ShaftHz(), d, io);
   if (!o.plot_dir.empty()) study::WriteIdentificationPlots(id, o.plot_dir);
   if (o.json) {
     std::printf("%s\n", id.ToJson(2).c_str());
@@ -82,11 +69,7 @@ spallkit::apps::Register reg(
     "Number, cage positions and width of spalled rollers from a vibration record",
     [](CLI::App& sub) {
       auto o = std::make_shared<Opts>();
-      sub.add_option("record", o->record, "record file (.csv/.txt or .h5)")->required();
-      o->bearing.Add(sub);
-      sub.add_option("--rpm", o->rpm, "nominal shaft speed, rpm")->required();
-      o->fs_option = sub.add_option("--fs", o->fs, "sample rate, Hz (overrides the file)");
-      sub.add_option("--channel", o->channel, "column name / 0-based data column, or HDF5 path");
+      o->input.Add(sub);
       o->load_option = sub.add_option(
           "--load-n", o->load_n, "radial load, N (fixes the load zone; else it is fitted)");
       sub.add_option("--max-count",

@@ -1,0 +1,51 @@
+// The record, bearing and speed options shared by `spall diagnose` and `spall identify`: the
+// record file and its channel / sample rate, the bearing (apps/bearing_options.h) and --rpm.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <string>
+
+#include "apps/bearing_options.h"
+#include "apps/cli_guard.h"
+#include "core/error.h"
+#include "core/record_io.h"
+
+namespace spallkit::apps {
+
+struct RecordInputOptions {
+  std::string record;
+  BearingOptions bearing;
+  double rpm = 0.0;
+  double fs = 0.0;
+  CLI::Option* fs_option = nullptr;
+  std::string channel;
+
+  void Add(CLI::App& sub) {
+    sub.add_option("record", record, "record file (.csv/.txt or .h5)")->required();
+    bearing.Add(sub);
+    sub.add_option("--rpm", rpm, "nominal shaft speed, rpm")->required();
+    fs_option = sub.add_option("--fs", fs, "sample rate, Hz (overrides the file)");
+    sub.add_option("--channel", channel, "column name / 0-based data column, or HDF5 path");
+  }
+
+  // Throws InputError for a speed or sample rate that is not a positive finite number.
+  void Check() const {
+    if (!(rpm > 0.0) || !std::isfinite(rpm))
+      throw InputError("--rpm must be > 0 (got " + Number(rpm) + ")");
+    if (fs_option && fs_option->count() > 0 && (!(fs > 0.0) || !std::isfinite(fs)))
+      throw InputError("--fs must be > 0 Hz (got " + std::to_string(fs) + ")");
+  }
+
+  double ShaftHz() const { return rpm / 60.0; }
+
+  // The record, read with the given channel and sample rate (core/record_io.h).
+  Record Read() const {
+    RecordOptions ro;
+    ro.sample_rate_hz = fs;
+    ro.channel = channel;
+    return ReadRecord(record, ro);
+  }
+};
+
+}  // namespace spallkit::apps
