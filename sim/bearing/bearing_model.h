@@ -1,5 +1,6 @@
-// The bearing model of a scene behind one interface, whatever its fidelity (DESIGN.md "Fidelity
-// ladder"). The run driver (simulation.h) and the recorder (recorder.h) see only this:
+// The bearing model of a scene behind one interface, whatever its fidelity (docs/BEARING_MODEL.md
+// "Choosing the fidelity"). The run driver (simulation.h) and the recorder (recorder.h) see only
+// this:
 //  - Fidelity::kFe      every part meshed (FeBearingModel, model_builder.h);
 //  - Fidelity::kHybrid  FE outer ring and adapter, rigid rollers / cage / inner ring with exact
 //                       profiles (FeBearingModel with HybridRollers);
@@ -65,8 +66,8 @@ struct BearingModelOptions {
 
 // One accelerometer channel: a point near the scene's sensor point and a direction.
 struct SensorChannel {
-  std::string sensor;     // scene sensor name
-  char direction = 'y';   // 'x' or 'y'
+  std::string sensor;  // scene sensor name
+  Axis direction = Axis::kY;
   int node = -1;          // FE models: nearest outer-ring or adapter node
   double distance_m = 0;  // from the requested point to that node
 };

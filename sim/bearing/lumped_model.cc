@@ -66,7 +66,7 @@ std::string CacheKey(const Scene& scene, const LumpedOptions& o) {
     os << ' ' << m->youngs_modulus_pa << ' ' << m->poisson_ratio << ' ' << m->density_kg_m3;
   for (const Sensor& s : scene.sensors) {
     os << ' ' << s.name << ' ' << s.x_m << ' ' << s.y_m;
-    for (const std::string& d : s.directions) os << ' ' << d;
+    for (Axis d : s.directions) os << ' ' << AxisName(d);
   }
   return os.str();
 }
@@ -164,7 +164,7 @@ void ProbeSensorResponse(const Scene& fs, const BearingModelOptions& options, Ho
       for (size_t c = 0; c < channels.size(); ++c) {
         const int node = channels[c].node;
         const double u =
-            channels[c].direction == 'x' ? st.x[node] - st.x0[node] : st.y[node] - st.y0[node];
+            channels[c].direction == Axis::kX ? st.x[node] - st.x0[node] : st.y[node] - st.y0[node];
         fit->sensor_response[c][p].push_back((u - u_old[c]) / h / kForce);
         u_old[c] = u;
       }
@@ -246,7 +246,7 @@ HousingFit ComputeHousingFit(const Scene& scene, const BearingModelOptions& opti
   }());
   const auto& channels = probe.sensor_channels();
   for (size_t k = 0; k < channels.size(); ++k)
-    fit.sensor_gain.push_back(channel_disp[channels[k].direction == 'x' ? 0 : 1][k]);
+    fit.sensor_gain.push_back(channel_disp[channels[k].direction == Axis::kX ? 0 : 1][k]);
   if (lo.sensor_response_s > 0) ProbeSensorResponse(fs, options, &fit);
   fit.fit_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return fit;
@@ -303,8 +303,7 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   if (!options.hybrid.IsValid(&err)) throw InputError(err);
   // Sensor channels in the FE models' order: every scene sensor, each of its directions.
   for (const Sensor& sensor : scene_.sensors)
-    for (const std::string& dir : sensor.directions)
-      channels_.push_back({sensor.name, dir == "x" ? 'x' : 'y', -1, 0.0});
+    for (Axis dir : sensor.directions) channels_.push_back({sensor.name, dir, -1, 0.0});
   if (channels_.size() != fit_.sensor_gain.size())
     throw InputError("lumped model: the housing fit has " +
                      std::to_string(fit_.sensor_gain.size()) + " sensor channels, the scene " +
@@ -447,7 +446,7 @@ BodyMotion LumpedBearingModel::InnerRingMotion() const {
 double LumpedBearingModel::SensorVelocity(int channel) const {
   const SensorChannel& ch = channels_[channel];
   if (fit_.sensor_response.empty())
-    return fit_.sensor_gain[channel] * (ch.direction == 'x' ? race_.vx_ : race_.vy_);
+    return fit_.sensor_gain[channel] * (ch.direction == Axis::kX ? race_.vx_ : race_.vy_);
   // Between the last two samples (one sample of delay: a continuous velocity to differentiate).
   const double s = sample_time_ * options_.lumped.sensor_sample_hz;
   return sensor_prev_[channel] + s * (sensor_last_[channel] - sensor_prev_[channel]);
@@ -524,7 +523,7 @@ std::string LumpedBearingModel::Describe() const {
     os << (d == 0 ? " x: " : "; y: ") << fit_.stiffness[d] * 1e-9 << " kN/um, " << fit_.mass[d]
        << " kg, " << fit_.Frequency(d) << " Hz";
   for (size_t c = 0; c < channels_.size(); ++c) {
-    os << "\nsensor " << channels_[c].sensor << " " << channels_[c].direction << ": ";
+    os << "\nsensor " << channels_[c].sensor << " " << AxisName(channels_[c].direction) << ": ";
     if (fit_.sensor_response.empty())
       os << "gain " << fit_.sensor_gain[c] << " of the ring's motion";
     else

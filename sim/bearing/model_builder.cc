@@ -232,8 +232,7 @@ FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& op
          << " mm away): put the point on the outer ring or the adapter";
       throw InputError(os.str());
     }
-    for (const std::string& dir : sensor.directions)
-      channels_.push_back({sensor.name, dir == "x" ? 'x' : 'y', best, best_d});
+    for (Axis dir : sensor.directions) channels_.push_back({sensor.name, dir, best, best_d});
   }
 }
 
@@ -270,7 +269,7 @@ void FeBearingModel::SetObserver(std::function<void()> observer) {
 double FeBearingModel::SensorVelocity(int channel) const {
   const SensorChannel& ch = channels_[channel];
   const fe::NodalState& s = solver_->state();
-  return ch.direction == 'x' ? s.vx[ch.node] : s.vy[ch.node];
+  return ch.direction == Axis::kX ? s.vx[ch.node] : s.vy[ch.node];
 }
 
 std::string FeBearingModel::SaveState() const { return solver_->SaveState(); }
@@ -382,7 +381,7 @@ std::string FeBearingModel::Describe() const {
        << " node pairs";
   }
   for (const SensorChannel& c : channels_)
-    os << "\nsensor " << c.sensor << " " << c.direction << ": node " << c.node << " ("
+    os << "\nsensor " << c.sensor << " " << AxisName(c.direction) << ": node " << c.node << " ("
        << c.distance_m * 1e3 << " mm from the point)";
   // Angles are interior angles, aspect = longest / shortest edge, skew = largest |angle - 90|.
   std::string quality = mesh_quality_.Merged().Report();

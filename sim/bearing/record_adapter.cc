@@ -16,14 +16,14 @@ Record ToRecord(const Recorder& recorder, const BearingModel& model, int channel
   Record record;
   record.samples = recorder.Acceleration(channel);
   record.sample_rate_hz = recorder.output_rate_hz();
-  record.channel = channels[channel].sensor + "_" + channels[channel].direction;
+  record.channel = channels[channel].sensor + "_" + AxisName(channels[channel].direction);
   record.units = "m/s^2";
   record.source = model.scene().source;
   return record;
 }
 
 Record ToRecord(const Simulation& simulation, AccelerationAxis axis) {
-  const char direction = axis == AccelerationAxis::kVertical ? 'y' : 'x';
+  const Axis direction = axis == AccelerationAxis::kVertical ? Axis::kY : Axis::kX;
   const auto& channels = simulation.model().sensor_channels();
   for (size_t c = 0; c < channels.size(); ++c) {
     if (channels[c].direction != direction) continue;

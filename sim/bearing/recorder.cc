@@ -192,20 +192,20 @@ void Recorder::Write(h5::File* file) const {
     const auto& channels = model_.sensor_channels();
     bool wrote_y = false, wrote_x = false;
     for (size_t c = 0; c < channels.size(); ++c) {
-      std::vector<std::string> paths = {"/signals/" + channels[c].sensor + "_" +
-                                        channels[c].direction};
+      const std::string direction = AxisName(channels[c].direction);
+      std::vector<std::string> paths = {"/signals/" + channels[c].sensor + "_" + direction};
       // The two public channels: first vertical (y) and first horizontal (x, called z as in
       // the paper's LS-DYNA axes) sensor direction.
-      if (channels[c].direction == 'y' && !wrote_y)
+      if (channels[c].direction == Axis::kY && !wrote_y)
         paths.push_back("/signals/accel_y"), wrote_y = true;
-      if (channels[c].direction == 'x' && !wrote_x)
+      if (channels[c].direction == Axis::kX && !wrote_x)
         paths.push_back("/signals/accel_z"), wrote_x = true;
       for (const std::string& p : paths) {
         file->WriteDataset(p, accel_out_[c]);
         file->SetAttribute(p, "units", "m/s^2");
         file->SetAttribute(p, "sample_rate_hz", fs);
         file->SetAttribute(p, "sensor", channels[c].sensor);
-        file->SetAttribute(p, "direction", std::string(1, channels[c].direction));
+        file->SetAttribute(p, "direction", direction);
       }
     }
   }

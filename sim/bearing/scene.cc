@@ -77,6 +77,7 @@ constexpr NamedValue<AdapterModel> kAdapterModelNames[] = {{AdapterModel::kElast
 constexpr NamedValue<RaceContact> kRaceContactNames[] = {{RaceContact::kFaceted, "faceted"},
                                                          {RaceContact::kCurved, "curved"},
                                                          {RaceContact::kSmooth, "smooth"}};
+constexpr NamedValue<Axis> kAxisNames[] = {{Axis::kX, "x"}, {Axis::kY, "y"}};
 constexpr NamedValue<Output> kOutputNames[] = {{Output::kContactForces, "contact_forces"},
                                                {Output::kAcceleration, "acceleration"},
                                                {Output::kCage, "cage"},
@@ -493,10 +494,12 @@ Sensor ReadSensor(Section s, std::size_t index) {
   sensor.name = s.String("name", "sensor" + std::to_string(index));
   sensor.x_m = s.Number("x_mm", 0.0, {-1000.0, 1000.0}) * kMm;
   sensor.y_m = s.Number("y_mm", 0.0, {-1000.0, 1000.0}) * kMm;
-  sensor.directions = s.Strings("directions", {"x", "y"});
-  for (const auto& dir : sensor.directions)
-    if (dir != "x" && dir != "y")
-      s.Fail("directions", "expected \"x\" or \"y\", got \"" + dir + "\"");
+  for (const std::string& name : s.Strings("directions", {"x", "y"})) {
+    Axis axis;
+    if (!ParseAxis(name, &axis))
+      s.Fail("directions", "expected \"x\" or \"y\", got \"" + name + "\"");
+    sensor.directions.push_back(axis);
+  }
   s.RejectUnknown();
   return sensor;
 }
@@ -564,6 +567,9 @@ const char* RaceContactName(RaceContact race_contact) {
 bool ParseRaceContact(const std::string& name, RaceContact* race_contact) {
   return ParseName(kRaceContactNames, name, race_contact);
 }
+
+const char* AxisName(Axis axis) { return NameOf(kAxisNames, axis); }
+bool ParseAxis(const std::string& name, Axis* axis) { return ParseName(kAxisNames, name, axis); }
 
 const char* OutputName(Output output) { return NameOf(kOutputNames, output); }
 bool ParseOutput(const std::string& name, Output* output) {

@@ -100,10 +100,16 @@ struct SceneMesh {
   double adapter_size_m = 1.0e-3;   // largest element height in the adapter, away from the seat
 };
 
+// A sensor's measuring direction in the section's axes: x horizontal, y vertical.
+enum class Axis { kX, kY };
+// Scene-file names "x", "y".
+const char* AxisName(Axis axis);
+bool ParseAxis(const std::string& name, Axis* axis);
+
 struct Sensor {
   std::string name;
-  double x_m = 0.0, y_m = 0.0;          // position in the section (bearing centre at origin)
-  std::vector<std::string> directions;  // subset of {"x", "y"}
+  double x_m = 0.0, y_m = 0.0;   // position in the section (bearing centre at origin)
+  std::vector<Axis> directions;  // measured directions (scene file: "x", "y")
 };
 
 // The error a run may have against the finest model ([run.tolerance]; Fidelity::kAuto

@@ -178,9 +178,9 @@ SimulationSummary Simulation::Run() {
   return sum;
 }
 
-// A run whose energy books do not balance has gone wrong numerically (e.g. the full-FE section's
-// once-free cage, docs/BEARING_MODEL.md, "Speed range of the full-FE section"): stop it instead of
-// writing plausible-looking signals. Energies below a millijoule (start of the ramp) are not
+// A run whose energy books do not balance has gone wrong numerically (e.g. a full-FE cage without
+// its pocket guide, docs/BEARING_MODEL.md, "Speed range of the full-FE section"): stop it instead
+// of writing plausible-looking signals. Energies below a millijoule (start of the ramp) are not
 // judged. With the work ledger on, the message names the worst account.
 void Simulation::CheckEnergyBalance() const {
   const double limit = model_->scene().solver.max_energy_error_percent;
@@ -228,10 +228,10 @@ void Simulation::WriteOutputs(const SimulationSummary& summary) const {
     cols.emplace_back("time (s)", recorder_->Find("/time")->data);
     bool y = false, x = false;
     for (size_t c = 0; c < channels.size(); ++c) {
-      if (channels[c].direction == 'y' && !y)
+      if (channels[c].direction == Axis::kY && !y)
         cols.emplace_back("accel_y (m/s^2)", recorder_->Acceleration(static_cast<int>(c))),
             y = true;
-      if (channels[c].direction == 'x' && !x)
+      if (channels[c].direction == Axis::kX && !x)
         cols.emplace_back("accel_z (m/s^2)", recorder_->Acceleration(static_cast<int>(c))),
             x = true;
     }

@@ -106,8 +106,8 @@ TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
   EXPECT_EQ(model.num_rollers(), 13);
   // Default sensors: top (0, 26 mm) along y and side (26 mm, 0) along x, on outer-ring nodes.
   ASSERT_EQ(model.sensor_channels().size(), 2u);
-  EXPECT_EQ(model.sensor_channels()[0].direction, 'y');
-  EXPECT_EQ(model.sensor_channels()[1].direction, 'x');
+  EXPECT_EQ(model.sensor_channels()[0].direction, Axis::kY);
+  EXPECT_EQ(model.sensor_channels()[1].direction, Axis::kX);
   for (const SensorChannel& c : model.sensor_channels()) EXPECT_LT(c.distance_m, scene.mesh.size_m);
   // Pure-rolling cage speed at 1200 rpm after the ramp: 52.224 rad/s (core/bearing.h).
   EXPECT_NEAR(model.TheoreticalCageSpeed(1.0), 52.224, 1e-3);

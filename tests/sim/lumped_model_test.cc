@@ -116,7 +116,7 @@ TEST(LumpedModelTest, SensorPathReproducesTheFeHousingUnderAnotherForce) {
     for (size_t c = 0; c < channels.size(); ++c) {
       const int node = channels[c].node;
       const double u =
-          channels[c].direction == 'x' ? st.x[node] - st.x0[node] : st.y[node] - st.y0[node];
+          channels[c].direction == Axis::kX ? st.x[node] - st.x0[node] : st.y[node] - st.y0[node];
       const double v_fe = (u - u_old[c]) / h;  // mean velocity over the sample
       u_old[c] = u;
       const double v = SensorPathVelocity(fit, static_cast<int>(c), down, side, k % n);
@@ -126,15 +126,15 @@ TEST(LumpedModelTest, SensorPathReproducesTheFeHousingUnderAnotherForce) {
   }
   for (size_t c = 0; c < channels.size(); ++c) {
     const double rel = std::sqrt(err2[c] / ref2[c]);
-    std::printf("channel %s %c: rms velocity %.3g m/s, sensor path error %.2f %%\n",
+    std::printf("channel %s %s: rms velocity %.3g m/s, sensor path error %.2f %%\n",
                 channels[c].sensor.c_str(),
-                channels[c].direction,
+                AxisName(channels[c].direction),
                 std::sqrt(ref2[c] / (6e-3 / h)),
                 100 * rel);
     EXPECT_GT(ref2[c], 0.0);
     // Measured on this scene: 1.4 % (side x) and 12.5 % (top y, whose response is small and
     // rich above 10 kHz); the error is the sampling's (at 50 kHz it is 4.4 % and 34 %).
-    EXPECT_LT(rel, 0.2) << channels[c].sensor << " " << channels[c].direction;
+    EXPECT_LT(rel, 0.2) << channels[c].sensor << " " << AxisName(channels[c].direction);
   }
 }
 
