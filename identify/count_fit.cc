@@ -13,6 +13,7 @@
 
 #include "core/constants.h"
 #include "core/error.h"
+#include "identify/chi_square.h"
 
 namespace spallkit::identify {
 namespace {
@@ -89,12 +90,7 @@ constexpr double kMinHalfAngle = 20.0 * kPi / 180.0, kMaxHalfAngle = 100.0 * kPi
 int ParameterCount(int k, bool half_fixed) { return k == 0 ? 1 : 1 + k + 1 + (half_fixed ? 3 : 4); }
 
 double Chi2(const CageAverage& avg, const std::vector<double>& model) {
-  double c = 0.0;
-  for (int i = 0; i < avg.bins(); ++i) {
-    const double r = (avg.mean[i] - model[i]) / avg.sigma[i];
-    c += r * r;
-  }
-  return c;
+  return ChiSquare(avg.mean, avg.sigma, model);
 }
 
 std::vector<double> Model(const CageAverage& avg, const HumpFit& f, int z) {

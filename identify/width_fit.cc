@@ -9,6 +9,7 @@
 
 #include "core/constants.h"
 #include "core/error.h"
+#include "identify/chi_square.h"
 
 namespace spallkit::identify {
 namespace {
@@ -68,12 +69,7 @@ std::vector<double> ModelOf(const EnvelopeCorrelation& r, int lags, const EntryE
 }
 
 double Chi2Of(const EnvelopeCorrelation& r, const std::vector<double>& model) {
-  double c = 0.0;
-  for (size_t i = 0; i < model.size(); ++i) {
-    const double e = (r.mean[i] - model[i]) / r.sigma[i];
-    c += e * e;
-  }
-  return c;
+  return ChiSquare(r.mean, r.sigma, model);
 }
 
 // Weighted linear least squares for (c, P_0, P_1, P_noise) at fixed delay and shape; false if a
