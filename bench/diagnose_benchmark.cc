@@ -63,7 +63,7 @@ void RunDiagnose(benchmark::State& state, const Record& record) {
                  " candidate bands searched");
 }
 
-// Outer-race fault (the benchmark record).
+// Outer-race fault record (the fault record of docs/PERFORMANCE.md, "Diagnosis").
 void BM_Diagnose10s48k(benchmark::State& state) { RunDiagnose(state, TheRecord()); }
 BENCHMARK(BM_Diagnose10s48k)
     ->ArgNames({"first_bands", "threads"})

@@ -10,9 +10,9 @@
 // no alignment of the passages: the entry-exit pair puts a peak at tau = dt whatever the
 // passage-to-passage slip, noise only adds near tau = 0 (its correlation time is 1 / band width),
 // and impacts of other rollers or of the other race fall at unrelated lags (> 1 / f_b apart,
-// flat). Averaging passages aligned on their exit peaks was tried first: aligning on noisy peaks
-// sharpens the exit and shifts the entry, and on 10 dB synthetic records dt came out 13 % long
-// with bootstrap intervals that missed the truth.
+// flat). Passages are not aligned on their exit peaks: aligning on noisy peaks sharpens the exit
+// and shifts the entry (on 10 dB synthetic records dt comes out 13 % long, with bootstrap
+// intervals that miss the truth).
 //
 // Model for tau in [0, max_delay + tail]:
 //     R(tau) = c + P_0 S(tau; sigma_0, tau_d) + P_1 S(tau - dt; sigma_1, tau_d) + P_n N(tau)

@@ -9,7 +9,7 @@
 #   3. the same diagnosis of the bundled sample record: out/sample_report.txt/.json.
 # SPALLKIT_SIM_SETS overrides the simulation settings (e.g. a finer mesh or longer run);
 # SPALLKIT_SPALL=path/to/spall runs the pipeline with an already built binary (no install, no
-# build: for checking the job from an engineer's own build folder); SPALLKIT_OUT sets the folder.
+# build: for checking the job from one's own build folder); SPALLKIT_OUT sets the folder.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ -z "${SPALLKIT_SPALL:-}" ]]; then
@@ -21,7 +21,7 @@ OUT=${SPALLKIT_OUT:-out}
 mkdir -p "$OUT/plots"
 
 # The scene's own speed (1200 rpm, the paper's) for 1 s (8.3 cage turns, 1 Hz resolution): about
-# 60 s of simulation on the 2-core machine. The paper's friction (mu 0.01 / 0.005, the scene's)
+# a minute of simulation (docs/PERFORMANCE.md). The paper's friction (mu 0.01 / 0.005, the scene's)
 # with the lubricant traction law on the roller-race contacts (friction.model = "ehl",
 # docs/CONTACT.md "Lubricant traction"): with Coulomb at mu 0.01 alone the rigid defective roller
 # is trapped on its spall corners at its first loaded spall passage (docs/PAPER.md, "The main

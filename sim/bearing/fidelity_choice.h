@@ -1,8 +1,9 @@
 // model.fidelity = "auto": the cheapest rung of the fidelity ladder whose measured error meets
-// what the scene asks for (DESIGN.md "Fidelity ladder"; docs/PERFORMANCE.md "Fidelity ladder").
+// what the scene asks for (docs/BEARING_MODEL.md "Choosing the fidelity"; docs/PERFORMANCE.md
+// "Fidelity ladder").
 //
 // The needs of a scene: its [run.tolerance] (errors allowed on f_b, f_c, the cage slip and the
-// largest roller load) and its [run] outputs (every output today is made by every rung: contact
+// largest roller load) and its [run] outputs (every output is made by every rung: contact
 // forces, acceleration, cage, rollers, energy). The rungs' errors are the bounds `spall bench
 // ladder` measured against the finest model (MeasuredRungErrors); a rung is chosen when each of
 // its bounds is within the tolerance, cheapest first: lumped, hybrid, fe.

@@ -1,7 +1,8 @@
-// The lumped bearing model (DESIGN.md "Fidelity ladder", the rung below the hybrid): the
+// The lumped bearing model (the rung below the hybrid, docs/BEARING_MODEL.md): the
 // hybrid's rigid rollers, cage and inner ring (roller_contacts.h: exact spall profiles, Palmgren
 // line contact, traction, pocket contact) on a RIGID outer ring carried by the housing's
-// stiffness, with the sensors from the FE housing's impulse responses. No mesh is stepped, so
+// stiffness; each sensor channel reads a gain times the ring's velocity (or the FE housing's
+// impulse responses when LumpedOptions::sensor_response_s > 0). No mesh is stepped, so
 // the time step is the roller contacts' and a simulated second costs a few seconds of one core
 // (docs/PERFORMANCE.md, "Fidelity ladder").
 //

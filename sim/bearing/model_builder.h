@@ -92,7 +92,7 @@ class FeBearingModel : public BearingModel {
   // into one line): a few lines for logs.
   std::string Describe() const override;
   // One line per known way this scene's model will not represent the bearing (printed by spall
-  // simulate as warnings). Today: full-FE rollers locked on their rim facets, and the curved race
+  // simulate as warnings): full-FE rollers locked on their rim facets, and the curved race
   // contact on rims finer than kCurvedMinRimSpacing. A polygonal roller
   // between two polygonal races rolls over a vertex only if the traction can tip it; measured at
   // the paper's load (docs/BEARING_MODEL.md): rim facets N = 40 (0.5 mm) lock at mu = 0.01
@@ -102,7 +102,7 @@ class FeBearingModel : public BearingModel {
   std::vector<std::string> Warnings() const override;
   static constexpr double kRollingMinMuFacets = 0.8;
   // Curved race contact: rims with a finer node spacing than this (m) are warned about (energy
-  // created at dented nodes, measured at 0.255 mm; 0.51 mm balanced in every run so far; the
+  // created at dented nodes, measured at 0.255 mm; 0.51 mm balanced in every run measured; the
   // measured figures are quoted in Warnings()' message and docs/CONTACT.md).
   static constexpr double kCurvedMinRimSpacing = 0.35e-3;
   // race_contact "smooth" on a spalled roller's rim: the spline stops short of the spall's

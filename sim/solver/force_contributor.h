@@ -61,7 +61,7 @@ class ForceContributor {
 
   virtual std::string Name() const = 0;
 
-  // Checkpoint/restart (added by fe): a contributor with history (friction springs, cumulative
+  // Checkpoint/restart: a contributor with history (friction springs, cumulative
   // energies) returns it as bytes and restores it, so that a resumed run is identical to an
   // uninterrupted one. The default has no state.
   virtual std::string SaveState() const { return {}; }

@@ -1,12 +1,12 @@
-// Issue #4's diagnosis criterion end to end, at the paper's speed: `spall simulate` the
-// verification scene (hybrid model, 2 mm housing, 1200 rpm, 0.8 s: 6.6 cage turns) and
-// `spall diagnose` its acceleration. Diagnose must call the roller spall and find f_b within 2 %
-// and f_c within 5 % of theory (the paper's LS-DYNA model: f_b 114.49 Hz against 115.08,
-// f_c 8.69 against 8.31), and the deviations must be the simulated slip: f_c against the mean
-// /cage/omega, f_b against twice the defective roller's mean spin relative to the cage.
-// Friction mu 0.1 / 0.08 (EHL traction level): with the scene's 0.01 / 0.005 the rigid roller
-// gets trapped with its spall on a race (docs/BEARING_MODEL.md, "Spall trapping").
-// About 36 s (the simulation); the 6000 rpm checks in bearing_verification_test are shorter.
+// The diagnosis criterion of docs/BEARING_MODEL.md end to end, at the paper's speed: `spall
+// simulate` the verification scene (hybrid model, 2 mm housing, 1200 rpm, 0.8 s: 6.6 cage turns)
+// and `spall diagnose` its acceleration. Diagnose must call the roller spall and find f_b within 2
+// % and f_c within 5 % of theory (the paper's LS-DYNA model: f_b 114.49 Hz against 115.08, f_c 8.69
+// against 8.31), and the deviations must be the simulated slip: f_c against the mean /cage/omega,
+// f_b against twice the defective roller's mean spin relative to the cage. Friction mu 0.1 / 0.08
+// (EHL traction level): with the scene's 0.01 / 0.005 the rigid roller gets trapped with its spall
+// on a race (docs/BEARING_MODEL.md, "Spall trapping"). About 36 s (the simulation); the 6000 rpm
+// checks in bearing_verification_test are shorter.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,10 +31,10 @@ TEST(HybridDiagnoseTest, DiagnoseFindsTheRollerSpallAtThePapersSpeed) {
       std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml";
   int code = 0;
   std::string out = RunSpall("simulate " + scene + " -o " + h5_path + " --csv " + csv +
-                                   " --quiet --set model.fidelity=hybrid --set mesh.size_mm=2.0"
-                                   " --set run.duration_s=0.8 --set friction.mu_static=0.1"
-                                   " --set friction.mu_dynamic=0.08",
-                               &code);
+                                 " --quiet --set model.fidelity=hybrid --set mesh.size_mm=2.0"
+                                 " --set run.duration_s=0.8 --set friction.mu_static=0.1"
+                                 " --set friction.mu_dynamic=0.08",
+                             &code);
   ASSERT_EQ(code, 0) << out;
   std::printf("%s", out.c_str());
   out = RunSpall("diagnose " + csv + " --bearing N205EM --rpm 1200 --json", &code);

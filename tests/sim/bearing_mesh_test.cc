@@ -145,7 +145,7 @@ TEST(BearingMesh, PaperMeshSmallestElementsAreNotFarBelowTheContactSize) {
   const double hc = s.mesh.contact_size_m;
   for (int p = 0; p < m.num_parts(); ++p) {
     SCOPED_TRACE(m.part_names[p]);
-    EXPECT_GT(lmin[p], 0.35 * hc);  // new roller layout 0.38 hc (old 0.27 hc)
+    EXPECT_GT(lmin[p], 0.35 * hc);  // the O-grid roller layout gives 0.38 hc
     EXPECT_GE(lmin[PartIndex(m, "adapter")], lmin[PartIndex(m, "roller1")]);
   }
 }

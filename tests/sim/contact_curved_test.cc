@@ -53,9 +53,9 @@ TEST(CurvedContactTest, PolygonRollerTouchesABoreAsTheCircleDoesAtEveryRotation)
 
 TEST(CurvedContactTest, ContactThroughARimNodeIsStillOneArcContact) {
   // A 512-node rim pressed 1 um into a 3072-node bore with a node of each exactly on the line of
-  // centres (as a bearing mesh has at t = 0 on the load line): rounding put the closest point a
-  // hair outside both neighbouring arcs' spans, and the contact dropped to node contact, three
-  // nodes at k each: 2.4 x the force (bench/contact_benchmark showed it).
+  // centres (as a bearing mesh has at t = 0 on the load line): rounding can put the closest point a
+  // hair outside both neighbouring arcs' spans; the in-span tolerance keeps it one arc contact
+  // (node contact there would be three nodes at k each: 2.4 x the force).
   const int n = 512, m = 6 * n;
   const double r = 5e-3, bore = 30e-3, overlap = 1e-6, cy = -(bore - r) - overlap;
   fe::NodalState state;

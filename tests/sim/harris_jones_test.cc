@@ -185,8 +185,8 @@ TEST(HarrisJones, BadInputIsInputError) {
   EXPECT_TRUE(LoadDistributionOptions().IsValid(&why)) << why;
 }
 
-// Inputs that once sent the bracketing loop into an endless search: each now ends, either with a
-// solution or with an InputError naming the input.
+// Extreme inputs for the bounded bracketing loop: each ends, either with a solution or with an
+// InputError naming the input.
 TEST(HarrisJones, ExtremeInputsEndWithASolutionOrAnError) {
   const BearingGeometry b = CatalogBearing("N205EM");
   LoadDistributionSummary s;

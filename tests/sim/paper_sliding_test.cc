@@ -21,7 +21,7 @@ namespace spallkit::sim {
 namespace {
 
 // N205EM at 1200 rpm: spin relative to the cage 361.5 rad/s against the inner ring
-// (bearing-notes §2), i.e. 2 pi BSF with BSF = 57.542 Hz.
+// (the kinematic spin, core/bearing.h), i.e. 2 pi BSF with BSF = 57.542 Hz.
 TEST(RollerSlidingTest, PureRollingSpinIsTheKinematicSpin) {
   const BearingGeometry b = CatalogBearing("N205EM");
   const double omega_i = 1200.0 * 2 * kPi / 60;
