@@ -5,7 +5,9 @@
 //  - contact stress: the Hertz line-contact pressure at the most loaded roller (Harris-Jones
 //    load distribution, sim/quasistatic) must stay below 4 GPa, the stress ISO 76 takes for the
 //    static load rating C0 of roller bearings: above it the races deform plastically and the
-//    elastic models no longer apply (N205EM: about 28 kN of radial load);
+//    elastic models no longer apply (N205EM: about 32 kN of radial load applied slowly). A load
+//    applied faster than the inner ring's radial period overshoots: the stress is taken at the
+//    dynamic peak, DynamicLoadFactor() x the load (a step: twice the load, about 16 kN);
 //  - duration: run.duration_s <= 60 s of simulated time;
 //  - output rate: at most what the mesh resolves (wave speed / element size);
 //  - results in memory: samples (duration x output rate) x recorded columns x 8 bytes must fit in
@@ -38,8 +40,20 @@ std::optional<SceneLimitViolation> FindSceneLimitViolation(const Scene& scene,
                                                            const SceneLimits& limits = {});
 
 // Hertz peak pressure of the most loaded roller-inner race contact (Pa) for the scene's
-// bearing, load, speed and clearance; roller length = bearing.thickness_mm.
+// bearing, speed and clearance under the radial load `load_n` (default: the scene's); roller
+// length = bearing.thickness_mm.
 double PeakContactStress(const Scene& scene);
+double PeakContactStress(const Scene& scene, double load_n);
+
+// Radial period of the loaded inner ring, s: the ring (mass m, the rigid models' shaft) on the
+// bearing's radial stiffness K at the scene's load (Harris-Jones), T = 2 pi sqrt(m / K); 0 when
+// the load distribution has no solution.
+double InnerRingRadialPeriod(const Scene& scene);
+
+// Peak over static load of the scene's radial load applied over operation.load_ramp_s: on the
+// oscillator of period T above, a load ramped linearly over t_r overshoots by the envelope of
+// its response spectrum, 1 + T / (pi t_r), and a step (t_r = 0) by 2.
+double DynamicLoadFactor(const Scene& scene);
 
 // Rough element count of the scene's mesh (meshed area / element area).
 double EstimatedElements(const Scene& scene);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -18,6 +19,7 @@
 #include "sim/bearing/model_builder.h"
 #include "sim/bearing/raceway_kernel.h"
 #include "sim/bearing/scene.h"
+#include "sim/bearing/scene_limits.h"
 #include "sim/bearing/simulation.h"
 #include "tests/sim/same_datasets.h"
 
@@ -179,6 +181,50 @@ TEST(LumpedModelTest, RollersRollAndTheCageFollowsPureRolling) {
   // Rollers outside the load zone have no traction and lag: the mean is up to 2 % low.
   EXPECT_NEAR(rel[1] / pure, 1.0, 0.02);
   EXPECT_NEAR(rel[0] / rel[1], 1.0, 0.01);
+}
+
+// A radial load applied at once overshoots: the inner ring on the bearing's radial stiffness is
+// an oscillator, whose peak under a step is twice its static deflection, first reached half a
+// period after the step. The scene limits take the contact stress at that peak
+// (sim/bearing/scene_limits.h, DynamicLoadFactor): the undamped lumped model at rest must show
+// the same peak roller load, at the time the Harris-Jones stiffness predicts, and no overshoot
+// under the default 5 ms ramp.
+TEST(LumpedModelTest, SuddenLoadPeaksAtTwiceTheStaticRollerLoad) {
+  auto peak_over_static = [](double ramp_s, double* t_peak) {
+    const Scene scene = LumpedScene({"operation.speed_rpm=0",
+                                     "operation.load_ramp_s=" + std::to_string(ramp_s),
+                                     "damping.ratio=0",
+                                     "run.duration_s=0.012",
+                                     "run.output_rate_hz=200000",
+                                     "run.outputs=[\"contact_forces\"]"});
+    Simulation sim(scene, {});
+    EXPECT_TRUE(sim.Run().completed);
+    const auto& t = sim.recorder().Find("/time")->data;
+    const auto& q = sim.recorder().Find("/contact/roller_inner")->data;
+    const int z = sim.model().num_rollers();
+    double peak = 0, settled = 0;
+    int n = 0;
+    for (size_t i = 0; i < t.size(); ++i) {
+      double q_max = 0;
+      for (int j = 0; j < z; ++j) q_max = std::max(q_max, q[i * z + j]);
+      if (q_max > peak) peak = q_max, *t_peak = t[i];
+      if (t[i] > 0.011) settled += q_max, ++n;
+    }
+    return peak / (settled / n);
+  };
+  const Scene scene = LumpedScene({"operation.load_ramp_s=0"});
+  const double period = InnerRingRadialPeriod(scene);
+  double t_step = 0, t_ramp = 0;
+  const double step = peak_over_static(0.0, &t_step);
+  const double ramp = peak_over_static(0.005, &t_ramp);
+  std::printf("peak / static roller load: step %.3f at %.1f us (T/2 = %.1f us), 5 ms ramp %.3f\n",
+              step,
+              1e6 * t_step,
+              0.5e6 * period,
+              ramp);
+  EXPECT_NEAR(step, DynamicLoadFactor(scene), 0.15);
+  EXPECT_NEAR(t_step / (0.5 * period), 1.0, 0.3);
+  EXPECT_LT(ramp, 1.03);
 }
 
 // The energy books of the paper's scene (its friction 0.01 / 0.005): rigid bodies' and ring
