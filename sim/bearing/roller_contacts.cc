@@ -207,7 +207,7 @@ int RollerContacts::RacePoints(int j,
                                int which,
                                const RollerProfile& p,
                                const ProfileDirections& dirs,
-                               RacePoint out[2]) const {
+                               RacePoint out[3]) const {
   // Positions only; the outer race radius is filled in by the caller (needs the nodal state).
   const double cx = centre_x_[j], cy = centre_y_[j];
   double dx, dy;  // unit direction from the roller centre towards the race contact
@@ -229,6 +229,7 @@ int RollerContacts::RacePoints(int j,
   const double* ky = dirs.corner_y();
   for (int k = 0; k < 2; ++k)
     out[k] = {cx + c * kx[k] - s * ky[k], cy + s * kx[k] + c * ky[k], -dx, -dy, 0.0};
+  out[2] = {cx + p.radius * dx, cy + p.radius * dy, -dx, -dy, 0.0};
   return 2;
 }
 
@@ -283,7 +284,38 @@ double RollerContacts::Contact(
   const int counter = static_cast<int>(body);
   const double m = reduced_mass_[3 * j + counter];
   const double m_t = reduced_mass_t_[3 * j + counter];
-  double q[2] = {0, 0}, q_total = 0, kn_total = 0, vt_acc = 0, ue_acc = 0;
+  // Elastic load and stiffness of each point. A rim pair with the intact circle's point
+  // (npts == 3) is one contact whose two edge zones overlap by what the circle would carry
+  // (RaceContacts): V = V(d_1) + V(d_2) - V(d_s), d_s = d_1 + d_2 - d_c the shared zone's
+  // depth, whose forces are Q(d_k) - Q(d_s) at the edges and Q(d_s) at the circle's point.
+  double qe_pt[3] = {0, 0, 0}, kn_pt[3] = {0, 0, 0};
+  for (int k = 0; k < std::min(npts, 2); ++k) {
+    const double d = pts[k].delta;
+    if (!(d > 0)) continue;
+    if (palmgren) {
+      qe_pt[k] = scale * k_c_ * std::pow(d, 10.0 / 9.0);
+      kn_pt[k] = 10.0 / 9.0 * qe_pt[k] / d;
+      step_potential_ += qe_pt[k] * d * (9.0 / 19.0);
+    } else {
+      kn_pt[k] = options_.cage_stiffness_n_per_m;
+      qe_pt[k] = kn_pt[k] * d;
+      step_potential_ += 0.5 * qe_pt[k] * d;
+    }
+  }
+  if (npts == 3) {
+    const double shared = pts[0].delta + pts[1].delta - pts[2].delta;
+    if (palmgren && shared > 0) {
+      const double qs = scale * k_c_ * std::pow(shared, 10.0 / 9.0);
+      const double ks = 10.0 / 9.0 * qs / shared;
+      step_potential_ -= qs * shared * (9.0 / 19.0);
+      for (int k = 0; k < 2; ++k) {
+        qe_pt[k] = std::max(0.0, qe_pt[k] - qs);
+        kn_pt[k] = std::max(0.0, kn_pt[k] - ks);
+      }
+      qe_pt[2] = qs, kn_pt[2] = ks;
+    }
+  }
+  double q[3] = {0, 0, 0}, q_total = 0, kn_total = 0, vt_acc = 0, ue_acc = 0;
   double tx = -pts[0].ny, ty = pts[0].nx;
   // Velocity of the roller's circle centre (the contact points move with it): the surfaces'
   // speeds relative to the contact give the lubricant's entrainment speed.
@@ -291,17 +323,8 @@ double RollerContacts::Contact(
   const double centre_vy = b.vy + b.omega * (centre_x_[j] - b.x);
   for (int k = 0; k < npts; ++k) {
     const RacePoint& p = pts[k];
-    if (!(p.delta > 0)) continue;
-    double qe, kn;
-    if (palmgren) {
-      qe = scale * k_c_ * std::pow(p.delta, 10.0 / 9.0);
-      kn = 10.0 / 9.0 * qe / p.delta;
-      step_potential_ += qe * p.delta * (9.0 / 19.0);
-    } else {
-      kn = options_.cage_stiffness_n_per_m;
-      qe = kn * p.delta;
-      step_potential_ += 0.5 * qe * p.delta;
-    }
+    if (!(qe_pt[k] > 0)) continue;
+    const double qe = qe_pt[k], kn = kn_pt[k];
     double vx, vy;
     CounterVelocity(body, p.px, p.py, &vx, &vy);
     const double rvx = b.vx - b.omega * (p.py - b.y) - vx;
@@ -355,7 +378,7 @@ double RollerContacts::Contact(
 
 void RollerContacts::RaceContacts(
     int j, const RollerProfile& prof, const ProfileDirections& dirs, double scale, int slot) {
-  RacePoint pts[2];
+  RacePoint pts[3];
   // Outer race. A profile point is a circle of radius rad around a centre q (the roller's
   // circle, or a rim fillet: its centre and radius, a corner with radius 0); the race gives its
   // gap and the normal of the deformed race.
@@ -373,6 +396,10 @@ void RollerContacts::RaceContacts(
       for (int k = 0; k < 2; ++k) qx[k] = pts[k].px, qy[k] = pts[k].py, rad[k] = rho;
     }
     for (int k = 0; k < n; ++k) race_->Gap(qx[k], qy[k], rad[k], &pts[k]);
+    if (n == 2) {  // the intact circle's point: what the rim pair's zones share
+      race_->Gap(cx, cy, prof.radius, &pts[2]);
+      n = 3;
+    }
     outer_force_[j] += Contact(j, Counter::kOuterRace, true, pts, n, &friction_[slot], scale);
   } else {
     friction_[slot] = 0.0;
@@ -383,7 +410,7 @@ void RollerContacts::RaceContacts(
     friction_[slot + 1] = 0.0;
     return;
   }
-  const int n = RacePoints(j, 1, prof, dirs, pts);
+  int n = RacePoints(j, 1, prof, dirs, pts);
   for (int k = 0; k < n; ++k) {
     const double ex = pts[k].px - shaft_.x, ey = pts[k].py - shaft_.y;
     const double d = std::sqrt(ex * ex + ey * ey);
@@ -394,6 +421,11 @@ void RollerContacts::RaceContacts(
     } else {
       pts[k].delta = inner_radius_ - d;
     }
+  }
+  if (n == 2) {  // the intact circle's point, as for the outer race
+    const double ex = pts[2].px - shaft_.x, ey = pts[2].py - shaft_.y;
+    pts[2].delta = inner_radius_ - std::sqrt(ex * ex + ey * ey);
+    n = 3;
   }
   inner_force_[j] += Contact(j, Counter::kShaft, true, pts, n, &friction_[slot + 1], scale);
 }

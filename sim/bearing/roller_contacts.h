@@ -14,7 +14,13 @@
 //  - roller-outer race: along the line from the bearing centre through the roller centre. If
 //    that direction is on the intact circle, one contact point at r; if it falls inside the spall
 //    (the spall faces the race), the roller rests on the spall's two rim edges, each checked
-//    against the race (the race curvature included): the force drop of a spall passage.
+//    against the race (the race curvature included): the force drop of a spall passage. The
+//    two edges' contact zones overlap where the intact circle would touch: with d_c the
+//    circle's penetration there and d_s = d_1 + d_2 - d_c (> 0 only when both edges lie in the
+//    zone the circle would load, i.e. the spall is narrower than the contact), the pair's
+//    potential is V(d_1) + V(d_2) - V(d_s). A narrow spall is thus bridged (its load is the
+//    intact roller's, acting at the circle's point), a wide one rests on two independent
+//    edges, and the load is continuous as the spall turns into and out of the race.
 //  - roller-inner race: the inner ring is rigid (on the shaft): exact circle of the raceway
 //    radius around the shaft centre; the shaft translates freely under the radial load and turns
 //    at the prescribed (ramped) speed.
@@ -153,18 +159,20 @@ class RollerContacts {
  private:
   enum class Counter { kOuterRace, kShaft, kCage };
   // Candidate points of roller j against the outer (which = 0) or inner (1) race: positions of
-  // the circle centre or the two rim fillet centres, normal along the centre line.
+  // the circle centre or the two rim fillet centres, normal along the centre line. With the rim
+  // pair (returns 2), out[2] is the intact circle's point towards the race.
   int RacePoints(int j,
                  int which,
                  const RollerProfile& profile,
                  const ProfileDirections& dirs,
-                 RacePoint out[2]) const;
+                 RacePoint out[3]) const;
   void CounterVelocity(Counter body, double px, double py, double* vx, double* vy) const;
   void ApplyCounter(Counter body, double px, double py, double fx, double fy);
   // One contact (1 or 2 points) of roller j with a counter body: normal force (Palmgren or the
   // cage's linear spring), damping and friction on the stick spring *spring; forces added to
   // the roller and the counter body. `scale`: the contact's share of the Palmgren stiffness.
-  // Returns the normal force.
+  // A Palmgren rim pair may come with a third point, the intact circle's (RaceContacts): the
+  // pair then shares the zone the circle would load (see there). Returns the normal force.
   double Contact(int j,
                  Counter body,
                  bool palmgren,
