@@ -444,7 +444,7 @@ struct BandTree {
 // Kurtogram, only as deep as the candidate bands need: the narrowest candidate (width >=
 // band_need) lies on binary level needed_level or on the ternary row below it, and the
 // ternary rows reach needed_level + 0.6 with L = needed_level + 1; deeper rows hold no
-// candidate and would cost ~15 % more. The map (options.kurtogram_map, for the plot) is a
+// candidate and would only add cost. The map (options.kurtogram_map, for the plot) is a
 // second kurtogram two levels deeper; the analysis does not depend on it.
 // Fills d->kurtogram (the map when asked) and d->kurtogram_best.
 BandTree ComputeBandTree(const EnvelopeAnalyzer& analyzer,

@@ -104,7 +104,7 @@ class EnvelopeAnalyzer {
   // (max_alpha_hz must be > 0), with the two transforms in single precision (fftwf; the band's
   // bins are scaled to unit RMS first, so no record is too small or large for floats) and the
   // second one a half-size complex transform of which only the bins up to max_alpha are formed.
-  // About 2.5x faster than Compute(); each bin within ~3e-6 relative of the double-precision
+  // Faster than Compute() (bench/dsp_benchmark); each bin within ~3e-6 relative of the double-precision
   // value (of the noise floor's level, for bins below it): what a detection statistic needs (the
   // diagnosis searches many bands this way). *envelope_size (may be null) receives the decimated
   // envelope's length m.

@@ -107,8 +107,8 @@ void StoreSquaredEnvelopes(const std::complex<float>* env, size_t count, std::ve
 
 // e^{2 pi i j / m}, j < m, as a coarse step times a fine step, e^{2 pi i c F / m} e^{2 pi i f / m}
 // with j = c F + f, F = floor(sqrt(m)): ~2 sqrt(m) sin/cos, and tables small enough to stay in
-// cache (PlaceBins forms the products as it goes; a full table of m roots per row was written and
-// read back from memory for the large rows). Error ~1e-7, the level of the single-precision
+// cache (PlaceBins forms the products as it goes rather than writing and reading back a full table
+// of m roots per row, which leaves the cache on the large rows). Error ~1e-7, the level of the single-precision
 // transforms the roots feed.
 struct UnitRoots {
   int m = 0, fine = 1;
@@ -210,7 +210,7 @@ void PlaceBins(const std::complex<float>* in,
 
 // Zeroes the positions of out[0, m) that PlaceBins(lo, hi, m, ...) does not write (bins sit at
 // k mod m, so they cover a circular run of hi - lo positions from lo mod m): a parent's bins
-// fill about all of its half-size grid, so clearing the whole buffer first was mostly wasted.
+// fill about all of its half-size grid, so clearing the whole buffer first would be mostly wasted.
 void ZeroOutsideBins(int lo, int hi, int m, std::complex<float>* out) {
   const int count = hi - lo;
   if (count >= m) return;
@@ -445,7 +445,7 @@ Kurtogram FastKurtogram(const EnvelopeAnalyzer& analyzer, const KurtogramOptions
   // first. The deepest row gets m >= 2B (B = most bins in a node; M >= 2B - 1 makes the moments
   // exact, and 2B keeps it so for the parents, whose B is at most twice their children's);
   // each parent doubles it. (Critical sampling, m >= B, would halve the cost but misses envelope
-  // peaks: on impulsive test signals its kurtosis was off by 27 % in nodes of 1000 bins.)
+  // peaks: on impulsive test signals its kurtosis is off by 27 % in nodes of 1000 bins.)
   std::vector<std::vector<ChainRow>> chains(2);
   for (int r = static_cast<int>(rows.size()) - 1; r >= 0; --r) {
     const bool ternary = rows[r].level != std::floor(rows[r].level);

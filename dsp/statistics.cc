@@ -16,7 +16,8 @@ namespace {
 typedef double D4 __attribute__((vector_size(32)));
 
 // Both passes with four-wide vector accumulators (GCC/Clang vector extension): plain loops are
-// serial chains of dependent additions (the compiler may not reassociate them), 4x slower. The
+// serial chains of dependent additions (the compiler may not reassociate them), several times
+// slower. The
 // passes are multi-versioned (core/multiversion.h): the baseline instruction set splits the
 // 256-bit vectors. Non-finite samples show as a NaN in the sum of x - x (*check != 0).
 SPALLKIT_MULTIVERSION

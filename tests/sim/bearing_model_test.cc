@@ -117,9 +117,9 @@ TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
 
 // The full-FE cage is roller-guided (CagePocketGuide): at 6000 rpm its centre stays within the
 // pocket play (0.5 mm) plus the rollers' own excursion and the energy books balance. With a free
-// cage (the straight pocket walls only; measured with a 1 m play) the centre was 2.1 mm off by
-// 4 ms and 6.3 mm by 12 ms, and at 0.5 mm the webs' corners then struck the rollers (energy error
-// 28.7 %; docs/BEARING_MODEL.md, "Speed range of the full-FE section"). ~12 s.
+// cage (the straight pocket walls only; measured with a 1 m play) the centre drifts 2.1 mm by
+// 4 ms and 6.3 mm by 12 ms, and at 0.5 mm the webs' corners strike the rollers (energy error
+// 28.7 %; docs/BEARING_MODEL.md, "Speed range of the full-FE section").
 TEST(BearingModelTest, FullFeCageStaysCentredAtSpeed) {
   const std::string scene = std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/width-1.38.toml";
   FeBearingModel model(
@@ -137,7 +137,7 @@ TEST(BearingModelTest, FullFeCageStaysCentredAtSpeed) {
   EXPECT_LT(model.solver().energies().BalanceError(), 1e-3);
   // And the cage turns at close to its rolling speed after the 5 ms ramp. Its mean over 6-8 ms:
   // the instantaneous speed of this faceted 1 mm model rattles by +-15 %, and which value 8 ms
-  // lands on changed with the compiler's floating-point contraction alone (-march=native FMA).
+  // lands on depends on the compiler's floating-point contraction alone (-march=native FMA).
   EXPECT_NEAR(omega_sum / omega_samples, model.TheoreticalCageSpeed(8e-3), 0.1 * 261.1);
 }
 

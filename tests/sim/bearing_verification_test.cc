@@ -642,7 +642,7 @@ TEST(HybridVerificationTest, SimulatedSignalCarriesRollerSpallAndCageRates) {
       100 * (fb_sim / fb_theory - 1));
   EXPECT_GT(prom_b, 5.0);
   // The cage lines are weak here (a dozen cage turns; windows of six bins): over six start-ups
-  // (operation.load_ramp_s 0.5 .. 5 ms) their prominence was 2.2 .. 4.4. That they are the
+  // (operation.load_ramp_s 0.5 .. 5 ms) their prominence is 2.2 .. 4.4. That they are the
   // cage's is shown by their position: within a third of a bin of the simulated cage rate (below).
   EXPECT_GT(prom_c, 2.0);
   EXPECT_NEAR(fb, fb_theory, 0.02 * fb_theory);

@@ -223,7 +223,7 @@ TEST(ExplicitSolver, WorkLedgerFindsTheContributorThatDoesNotBookItsWork) {
 // force, for which central differences conserve the energy measured at t^n (stored energies at
 // x^n, kinetic 1/2 m v^(n-1/2) . v^(n+1/2), work up to t^n) to rounding at every step. The
 // kinetic energy at v^(n+1/2) would be off by half a step of the elastic forces' power: the
-// error a load step's impact showed in the bearing models, first order in dt.
+// error that measure gives at a load step's impact in the bearing models, first order in dt.
 TEST(ExplicitSolver, EnergyBalanceAtTnHoldsEveryStepUnderAStepLoad) {
   fe::DiscSpec d;
   d.radius = 0.01, d.n_core = 3, d.n_radial = 2;
