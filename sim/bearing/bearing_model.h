@@ -125,6 +125,9 @@ class BearingModel {
   // Element and node counts of the stepped mesh (0 for a model without one).
   virtual int num_elements() const = 0;
   virtual int num_nodes() const = 0;
+  // Von Mises stress (Pa) at each element's centroid at the last step, in bearing_mesh()'s
+  // element order, into out[0, num_elements()) (the "field" output).
+  virtual void ElementVonMises(double* /*out*/) const {}
   const MeshQualityReport& mesh_quality() const { return mesh_quality_; }
   // A few lines for logs: parts, sizes, contacts, sensors.
   virtual std::string Describe() const = 0;

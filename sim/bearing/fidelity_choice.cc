@@ -1,5 +1,6 @@
 #include "sim/bearing/fidelity_choice.h"
 
+#include <algorithm>
 #include <sstream>
 
 namespace spallkit::sim {
@@ -22,6 +23,15 @@ FidelityChoice ChooseFidelity(const Scene& scene) {
   if (scene.model.fidelity != Fidelity::kAuto) {
     c.fidelity = scene.model.fidelity;
     c.reason = std::string("fidelity ") + FidelityName(c.fidelity) + " (set in the scene)";
+    return c;
+  }
+  if (std::find(scene.outputs.begin(), scene.outputs.end(), Output::kField) !=
+      scene.outputs.end()) {
+    c.fidelity = Fidelity::kFe;
+    c.reason =
+        "fidelity auto -> fe: run.outputs asks for the stress field, which only the full FE has "
+        "for "
+        "every part (the hybrid meshes the outer ring and adapter alone)";
     return c;
   }
   const SceneTolerance& tol = scene.run.tolerance;

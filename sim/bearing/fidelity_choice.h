@@ -3,8 +3,9 @@
 // "Fidelity ladder").
 //
 // The needs of a scene: its [run.tolerance] (errors allowed on f_b, f_c, the cage slip and the
-// largest roller load) and its [run] outputs (every output is made by every rung: contact
-// forces, acceleration, cage, rollers, energy). The rungs' errors are the bounds `spall bench
+// largest roller load) and its [run] outputs (contact forces, acceleration, cage, rollers and
+// energy are made by every rung; the stress field of every part only by the full FE, which is
+// then chosen whatever the tolerance). The rungs' errors are the bounds `spall bench
 // ladder` measured against the finest model (MeasuredRungErrors); a rung is chosen when each of
 // its bounds is within the tolerance, cheapest first: lumped, hybrid, fe.
 #pragma once

@@ -236,6 +236,11 @@ FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& op
   }
 }
 
+void FeBearingModel::ElementVonMises(double* out) const {
+  const fe::QuadElements& e = solver_->elements();
+  for (int i = 0; i < num_elements(); ++i) out[i] = e.VonMises(i);
+}
+
 double FeBearingModel::RollerOuterForce(int j) const {
   if (hybrid_) return hybrid_->rollers().OuterForce(j);
   return outer_pairs_[j]->Resultant().NormalMagnitude();

@@ -68,6 +68,7 @@ class FeBearingModel : public BearingModel {
   double SensorVelocity(int channel) const override;
   int num_elements() const override { return mesh_.mesh.num_elements(); }
   int num_nodes() const override { return mesh_.mesh.num_nodes(); }
+  void ElementVonMises(double* out) const override;
 
   solver::ExplicitSolver& solver() { return *solver_; }
   const solver::ExplicitSolver& solver() const { return *solver_; }

@@ -72,6 +72,23 @@ Recorder::Recorder(const BearingModel& model, const RecorderOptions& options)
     accel_out_.assign(nc, {});
   }
   last_orbit_.assign(z, std::numeric_limits<double>::quiet_NaN());
+  if (Wants(Output::kField)) {
+    if (model_.num_elements() == 0)
+      throw InputError(
+          "run.outputs: \"field\" needs a meshed model (model.fidelity \"fe\" or "
+          "\"hybrid\"); the " +
+          std::string(FidelityName(model_.fidelity())) + " model steps no mesh");
+    if (!(options_.field_rate_hz > 0) || options_.field_rate_hz > options_.output_rate_hz)
+      throw InputError("recorder: field_rate_hz must be in (0, output_rate_hz]");
+    num_field_samples_ =
+        static_cast<int>(std::floor(options_.duration_s * options_.field_rate_hz + 1e-9)) + 1;
+    const int ne = model_.num_elements();
+    idx_field_time_ = static_cast<int>(series_.size());
+    series_.push_back({"/field/time", 1, "s", false, {}});
+    idx_field_ = static_cast<int>(series_.size());
+    series_.push_back({"/field/von_mises", ne, "Pa", false, {}});
+    series_.back().data.reserve(static_cast<size_t>(num_field_samples_) * ne);
+  }
 }
 
 bool Recorder::Wants(Output output) const {
@@ -120,6 +137,18 @@ void Recorder::Observe() {
   while (next_sample_ < num_samples_ &&
          model.time() >= next_sample_ / options_.output_rate_hz - 1e-15)
     Sample();
+  while (next_field_sample_ < num_field_samples_ &&
+         model.time() >= next_field_sample_ / options_.field_rate_hz - 1e-15)
+    SampleField();
+}
+
+void Recorder::SampleField() {
+  series_[idx_field_time_].data.push_back(next_field_sample_ / options_.field_rate_hz);
+  std::vector<double>& d = series_[idx_field_].data;
+  const size_t at = d.size();
+  d.resize(at + static_cast<size_t>(model_.num_elements()));
+  model_.ElementVonMises(d.data() + at);
+  ++next_field_sample_;
 }
 
 void Recorder::Sample() {
@@ -186,7 +215,25 @@ void Recorder::Write(h5::File* file) const {
     else
       file->WriteDataset2D(s.path, s.data, s.data.size() / s.cols, s.cols);
     file->SetAttribute(s.path, "units", s.units);
-    if (s.path != "/time") file->SetAttribute(s.path, "sample_rate_hz", fs);
+    const bool field = s.path.rfind("/field/", 0) == 0;
+    if (s.path != "/time" && s.path != "/field/time")
+      file->SetAttribute(s.path, "sample_rate_hz", field ? options_.field_rate_hz : fs);
+  }
+  if (idx_field_ >= 0) {
+    const fe::Mesh& m = model_.bearing_mesh().mesh;
+    std::vector<double> nodes, elements, part;
+    for (int i = 0; i < m.num_nodes(); ++i) nodes.push_back(m.x[i]), nodes.push_back(m.y[i]);
+    for (int e = 0; e < m.num_elements(); ++e) {
+      for (int c = 0; c < 4; ++c) elements.push_back(m.quads[e][c]);
+      part.push_back(m.element_part[e]);
+    }
+    file->WriteDataset2D("/field/nodes", nodes, m.num_nodes(), 2);
+    file->SetAttribute("/field/nodes", "units", "m");
+    file->WriteDataset2D("/field/elements", elements, m.num_elements(), 4);
+    file->WriteDataset("/field/part", part);
+    std::string names;
+    for (const std::string& n : m.part_names) names += (names.empty() ? "" : ",") + n;
+    file->SetAttribute("/field/part", "part_names", names);
   }
   if (accel_) {
     const auto& channels = model_.sensor_channels();
@@ -228,6 +275,7 @@ std::string Recorder::SaveState() const {
     out.PutVector(accel_out_[c]);
   }
   out.PutVector(last_orbit_);
+  out.Put<std::int32_t>(next_field_sample_);
   return out.Take();
 }
 
@@ -251,6 +299,7 @@ void Recorder::LoadState(const std::string& bytes) {
     accel_out_[c] = r.GetVector<double>();
   }
   last_orbit_ = r.GetVector<double>();
+  next_field_sample_ = r.Get<std::int32_t>();
 }
 
 }  // namespace spallkit::sim

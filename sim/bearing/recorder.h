@@ -9,7 +9,12 @@
 //    sample k is centred on t_k = k / output_rate like every other channel;
 //  - everything else is sampled at the first step with t >= t_k (at most one solver step, tens
 //    of ns, late): contact forces per roller, cage and roller rigid motion, energies. Outputs not
-//    listed in the scene's [run] outputs are neither computed nor written.
+//    listed in the scene's [run] outputs are neither computed nor written;
+//  - the stress field ("field"): the von Mises stress of every element of the stepped mesh at
+//    the first step with t >= k / field_rate_hz, in /field/von_mises (snapshots x elements, Pa)
+//    with /field/time; the mesh it lives on is written once: /field/nodes (x, y at rest, m),
+//    /field/elements (four node indices per element, counter-clockwise) and /field/part (part
+//    index per element; names in the attribute part_names, comma-separated).
 // The series are kept in memory (a few MB for 0.2 s at 20 kHz) and written at the end; the whole
 // recorder state round-trips through SaveState/LoadState for checkpoints.
 #pragma once
@@ -28,6 +33,7 @@ namespace spallkit::sim {
 
 struct RecorderOptions {
   double output_rate_hz = 20000.0;
+  double field_rate_hz = 1000.0;  // "field" snapshots; at most output_rate_hz
   double duration_s = 0.2;
   int fine_factor = 8;  // fine grid rate / output rate for the acceleration
   std::vector<Output> outputs = {Output::kContactForces,
@@ -72,12 +78,15 @@ class Recorder {
 
  private:
   void Sample();
+  void SampleField();
   void PushFine(int channel, double accel);
   bool Wants(Output output) const;
 
   const BearingModel& model_;
   RecorderOptions options_;
   int num_samples_ = 0, next_sample_ = 0;
+  int num_field_samples_ = 0, next_field_sample_ = 0;
+  int idx_field_time_ = -1, idx_field_ = -1;
   std::vector<Series> series_;
   int idx_time_ = -1, idx_outer_ = -1, idx_inner_ = -1, idx_cage_force_ = -1, idx_omega_ = -1,
       idx_slip_ = -1, idx_spin_ = -1, idx_orbit_ = -1, idx_energy_ = -1;

@@ -522,6 +522,11 @@ void ReadSensors(Section& top, const SceneGeometry& g, std::vector<Sensor>* sens
 void ReadRun(Section s, SceneRun* run, std::vector<Output>* outputs) {
   run->duration_s = s.Number("duration_s", 0.2, kPositive);
   run->output_rate_hz = s.Number("output_rate_hz", 20000.0, kPositive);
+  run->field_rate_hz = s.Number("field_rate_hz", std::min(1000.0, run->output_rate_hz), kPositive);
+  if (run->field_rate_hz > run->output_rate_hz)
+    s.Fail("field_rate_hz",
+           "must be at most run.output_rate_hz (" + FormatNumber("%.6g", run->output_rate_hz) +
+               " Hz; got " + FormatNumber("%.6g", run->field_rate_hz) + ")");
   for (const std::string& name :
        s.Strings("outputs", {"contact_forces", "acceleration", "cage", "rollers", "energy"})) {
     Output o;

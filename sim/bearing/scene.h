@@ -124,6 +124,7 @@ struct SceneTolerance {
 struct SceneRun {
   double duration_s = 0.2;
   double output_rate_hz = 20000.0;
+  double field_rate_hz = 1000.0;  // stress field snapshots ("field"; <= output_rate_hz)
   SceneTolerance tolerance;
 };
 
@@ -157,7 +158,9 @@ const char* RaceContactName(RaceContact race_contact);
 bool ParseRaceContact(const std::string& name, RaceContact* race_contact);
 
 // What a run records ([run] outputs): roller contact forces, sensor accelerations, cage speed and
-// slip, roller spin and orbit, energy terms; kField is accepted and records nothing more.
+// slip, roller spin and orbit, energy terms, and kField: the von Mises stress of every element of
+// the stepped mesh at run.field_rate_hz (every part in the full FE, the outer ring and adapter in
+// the hybrid; the lumped model has no mesh and refuses it).
 enum class Output { kContactForces, kAcceleration, kCage, kRollers, kEnergy, kField };
 // Scene-file names: "contact_forces", "acceleration", "cage", "rollers", "energy", "field".
 const char* OutputName(Output output);

@@ -118,6 +118,8 @@ double EstimatedResultBytes(const Scene& scene) {
     if (out == Output::kCage) columns += 2;
     if (out == Output::kRollers) columns += 2 * z;
     if (out == Output::kEnergy) columns += 8;
+    if (out == Output::kField && scene.model.fidelity != Fidelity::kLumped)
+      columns += EstimatedElements(scene) * scene.run.field_rate_hz / scene.run.output_rate_hz;
     if (out == Output::kAcceleration) columns += channels;
   }
   // Doubled: the results are copied once more when written.

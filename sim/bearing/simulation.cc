@@ -54,6 +54,7 @@ Simulation::Simulation(const Scene& scene, SimulationOptions options)
   fidelity_reason_ = choice.reason;
   RecorderOptions ro;
   ro.output_rate_hz = scene.run.output_rate_hz;
+  ro.field_rate_hz = scene.run.field_rate_hz;
   ro.duration_s = scene.run.duration_s;
   ro.outputs = scene.outputs;
   ro.fine_factor = options_.fine_factor;

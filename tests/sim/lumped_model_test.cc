@@ -330,6 +330,12 @@ TEST(FidelityChoiceTest, AutoPicksTheCheapestRungWithinTheTolerance) {
             Fidelity::kFe);
   EXPECT_EQ(ChooseFidelity(LoadScene(SceneFile(), {"model.fidelity=hybrid"})).fidelity,
             Fidelity::kHybrid);
+  // The stress field of every part: only the full FE has it, whatever the tolerance.
+  std::vector<std::string> field = loose(2 * lumped.f_b);
+  field.push_back("run.outputs=[\"acceleration\", \"field\"]");
+  const FidelityChoice to_fe = ChooseFidelity(LoadScene(SceneFile(), field));
+  EXPECT_EQ(to_fe.fidelity, Fidelity::kFe) << to_fe.reason;
+  EXPECT_NE(to_fe.reason.find("stress field"), std::string::npos) << to_fe.reason;
 
   SimulationOptions o;
   o.output_path = TempPath("auto.h5");
