@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "apps/output_paths.h"
 #include "core/atomic_file.h"
 #include "core/constants.h"
 #include "core/error.h"
@@ -66,6 +67,10 @@ int Run(const Opts& o) {
     vo.identify.count.sensor_angle_rad = o.sensor_angle_deg * kPi / 180.0;
   std::string error;
   if (!vo.IsValid(&error)) throw InputError(error);
+  apps::OutputPaths paths;
+  paths.Add("--csv", o.csv);
+  for (const auto& in : o.inputs) paths.MustDifferFrom("input", in);
+  paths.Check();
   std::vector<std::string> files;
   for (const auto& in : o.inputs) {
     if (in.size() > 3 && in.compare(in.size() - 3, 3, ".h5") == 0) {

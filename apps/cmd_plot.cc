@@ -6,11 +6,13 @@
 //   spall plot study DIR --x KEY --y QUANTITY [--group KEY]... [--from-s A] -o out.png [--csv]
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "apps/command.h"
+#include "apps/output_paths.h"
 #include "core/error.h"
 #include "study/record_plot.h"
 #include "study/study_plot.h"
@@ -87,6 +89,15 @@ spallkit::apps::Register reg(
         if (study->parsed()) {
           o->study.group = o->group;
           o->study.group_set = !o->group.empty() || o->one_line;
+          apps::OutputPaths paths;
+          paths.Add("-o", o->study_output, true);
+          paths.Add("--csv", o->study_csv);
+          // No output may replace a file of the dataset it reads (index, cases).
+          std::error_code ec;
+          for (const auto& entry : std::filesystem::directory_iterator(o->dir, ec))
+            if (entry.is_regular_file(ec))
+              paths.MustDifferFrom("dataset file", entry.path().string());
+          paths.Check();
           const auto r = study::PlotStudy(o->dir, o->study, o->study_output, o->study_csv);
           std::printf("wrote %s (%zu points)%s%s\n",
                       o->study_output.c_str(),
@@ -99,6 +110,11 @@ spallkit::apps::Register reg(
           throw InputError("plot: give a record or simulation file (or `plot study DIR`)");
         o->plot.kind = study::ParseRecordPlotKind(o->kind);
         ParseBand(o->band, &o->plot);
+        apps::OutputPaths paths;
+        paths.Add("-o", o->output, true);
+        paths.Add("--csv", o->csv);
+        paths.MustDifferFrom("input file", o->input);
+        paths.Check();
         const auto r = study::PlotRecordFile(o->input, o->plot, o->output, o->csv);
         std::printf("wrote %s (%zu points)%s%s\n",
                     o->output.c_str(),

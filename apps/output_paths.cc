@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace spallkit::apps {
@@ -26,6 +27,11 @@ void CheckWritable(const std::string& option, const std::string& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec))
     throw InputError(option + " " + path + ": is a directory, expected a file name");
+  try {
+    CheckReplaceableOutput(path);
+  } catch (const InputError& e) {
+    throw InputError(option + " " + e.what());
+  }
   fs::path folder = fs::path(path).parent_path();
   if (folder.empty()) folder = ".";
   if (!fs::exists(folder, ec))

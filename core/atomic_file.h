@@ -9,8 +9,13 @@
 
 namespace spallkit {
 
+// Throws InputError naming `path` when something other than a regular file is there (a folder, a
+// device such as /dev/null, a pipe, a socket or a symbolic link): the rename would replace it.
+void CheckReplaceableOutput(const std::string& path);
+
 class AtomicFile {
  public:
+  // Throws InputError (CheckReplaceableOutput) when final_path is not a regular file or absent.
   explicit AtomicFile(std::string final_path);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;

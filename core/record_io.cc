@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/hdf5.h"
+#include "core/input_file.h"
 
 namespace spallkit {
 namespace {
@@ -293,20 +294,7 @@ void ValidateOptionRate(const RecordOptions& options, const std::string& name) {
   }
 }
 
-std::string ReadWholeFile(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(path + ": is a directory, expected a record file");
-  }
-  std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
-  if (!file) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::string text;
-  char buffer[1 << 16];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
-  if (std::ferror(file.get())) throw InputError(path + ": read error");
-  return text;
-}
+std::string ReadWholeFile(const std::string& path) { return ReadInputFile(path, "a record file"); }
 
 bool IsAllDigits(std::string_view s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/record_io.h"
 
 namespace spallkit::dsp {
@@ -101,11 +102,10 @@ LabelledRecord ParseEntry(const json& e,
 }  // namespace
 
 std::vector<LabelledRecord> ReadBenchmarkManifest(const std::string& manifest_path) {
-  std::ifstream in(manifest_path);
-  if (!in) throw InputError(manifest_path + ": cannot open the manifest");
+  const std::string text = ReadInputFile(manifest_path, "a manifest (JSON)");
   json j;
   try {
-    j = json::parse(in);
+    j = json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(manifest_path + ": not valid JSON (" + e.what() + ")");
   }

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "study/random_stream.h"
 
 namespace spallkit::study {
@@ -253,12 +254,10 @@ Sweep ParseSweep(const std::string& toml_text,
     }
   }
   if (sweep.base_scene.empty()) throw InputError(source_name + ": [base] scene is required");
-  {
-    std::ifstream in(sweep.base_scene, std::ios::binary);
-    if (!in) throw InputError(source_name + ": base.scene: cannot read '" + sweep.base_scene + "'");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    sweep.base_text = ss.str();
+  try {
+    sweep.base_text = ReadInputFile(sweep.base_scene, "a scene file (TOML)");
+  } catch (const InputError& e) {
+    throw InputError(source_name + ": base.scene: " + e.what());
   }
 
   std::set<std::string> varied;
@@ -337,11 +336,9 @@ Sweep ParseSweep(const std::string& toml_text,
 }
 
 Sweep LoadSweep(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the sweep file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ParseSweep(ss.str(), path, std::filesystem::path(path).parent_path().string());
+  return ParseSweep(ReadInputFile(path, "a sweep file (TOML)"),
+                    path,
+                    std::filesystem::path(path).parent_path().string());
 }
 
 std::string CaseId(int index) {

@@ -11,6 +11,7 @@
 #include "core/constants.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/input_file.h"
 #include "sim/bearing/scene_limits.h"
 
 namespace spallkit::sim {
@@ -246,6 +247,13 @@ Material ReadMaterial(Section s, const Material& def) {
   m.youngs_modulus_pa = s.Number("youngs_modulus_pa", def.youngs_modulus_pa, kPositive);
   m.poisson_ratio = s.Number("poisson_ratio", def.poisson_ratio, {-1.0, 0.5, true, true});
   m.density_kg_m3 = s.Number("density_kg_m3", def.density_kg_m3, kPositive);
+  // The explicit step is element size / wave speed: a wave faster than 1000 km/s (50 x any solid)
+  // would need billions of steps per millisecond.
+  const double wave_speed = std::sqrt(m.youngs_modulus_pa / m.density_kg_m3);
+  if (!(wave_speed <= 1e6))
+    s.Fail("density_kg_m3",
+           "sqrt(youngs_modulus_pa / density_kg_m3) = " + FormatNumber("%.3g", wave_speed) +
+               " m/s, above the 1e+06 m/s bound (no solid is that stiff for its density)");
   s.RejectUnknown();
   return m;
 }
@@ -548,7 +556,7 @@ void ReadRun(Section s, SceneRun* run, std::vector<Output>* outputs) {
 }
 
 void ReadSolver(Section s, SceneSolver* solver) {
-  solver->time_step_safety = s.Number("time_step_safety", 0.9, {0.0, 1.0, true, false});
+  solver->time_step_safety = s.Number("time_step_safety", 0.9, {1e-3, 1.0, false, false});
   solver->threads = s.Integer("threads", 0, 0, 1024);
   solver->checkpoint_interval_s = s.Number("checkpoint_interval_s", 0.0, kNonNegative);
   solver->max_energy_error_percent =
@@ -717,16 +725,9 @@ Scene ParseScene(const std::string& toml_text,
 }
 
 Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides) {
-  // A folder opens as an empty stream on Linux and would run the default scene.
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path + ": is a directory, expected a scene file (TOML)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": read error");
-  return ParseScene(text.str(), path, overrides);
+  // A folder opens as an empty stream on Linux and would run the default scene: refused, as are
+  // read errors and endless devices.
+  return ParseScene(ReadInputFile(path, "a scene file (TOML)"), path, overrides);
 }
 
 }  // namespace spallkit::sim

@@ -133,6 +133,13 @@ std::optional<SceneLimitViolation> FindSceneLimitViolation(const Scene& scene,
                                "must be at most " + FormatNumber("%.3g", limits.max_duration_s) +
                                    " s of simulated time (got " +
                                    FormatNumber("%.3g", scene.run.duration_s) + ")"};
+  const double ci = scene.solver.checkpoint_interval_s;
+  if (ci > 0 && !(scene.run.duration_s / ci <= 1e5))
+    return SceneLimitViolation{"solver.checkpoint_interval_s",
+                               FormatNumber("%.3g", ci) + " s gives " +
+                                   FormatNumber("%.3g", scene.run.duration_s / ci) +
+                                   " checkpoints over run.duration_s, more than 1e+05 (each "
+                                   "writes the whole state)"};
   const double max_bytes =
       limits.max_result_bytes > 0 ? limits.max_result_bytes : 0.5 * PhysicalMemoryBytes();
   const double bytes = EstimatedResultBytes(scene);

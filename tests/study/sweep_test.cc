@@ -154,7 +154,7 @@ TEST(SweepTest, BadSweepsGiveOneLineNamingFileLineAndKey) {
   ExpectError(base + "[grid]\n\"operation.speed_rmp\" = [1000.0]\n", "speed_rmp");
   ExpectError(base + "[grid]\n\"defects.count\" = [-1]\n", "integer >= 0");
   ExpectError(base + "[gird]\n", "unknown table");
-  ExpectError("[base]\nscene = \"missing.toml\"\n", "cannot read");
+  ExpectError("[base]\nscene = \"missing.toml\"\n", "missing.toml: cannot open");
 }
 
 }  // namespace
