@@ -15,10 +15,13 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_guard.h"
 #include "apps/command.h"
+#include "apps/output_paths.h"
 #include "core/error.h"
 #include "plot/line_plot.h"
 #include "sim/bearing/fidelity_ladder.h"
+#include "sim/bearing/scene_limits.h"
 
 namespace {
 
@@ -33,6 +36,15 @@ struct Opts {
 
 int Run(const Opts& o) {
   using namespace spallkit::sim;
+  // The scene limit on simulated time (sim/bearing/scene_limits.h), and the plot's path, before
+  // any rung runs.
+  if (!(o.duration_s > 0 && o.duration_s <= SceneLimits{}.max_duration_s))
+    throw spallkit::InputError("--duration-s must be in (0, " +
+                               spallkit::apps::Number(SceneLimits{}.max_duration_s) + "] s (got " +
+                               spallkit::apps::Number(o.duration_s) + ")");
+  spallkit::apps::OutputPaths paths;
+  paths.Add("--plot", o.plot);
+  paths.Check();
   LadderOptions lo;
   lo.duration_s = o.duration_s;
   std::vector<std::string> sets = {"friction.mu_static=0.15", "friction.mu_dynamic=0.12"};

@@ -121,6 +121,12 @@ int Run(const Opts& o, spallkit::study::MpiWorld& world) {
                   ran,
                   failed,
                   missing);
+    if (failed > 0 && world.rank() == 0)
+      std::fprintf(stderr,
+                   "spall: %lld case(s) failed: their messages are in %s/index.csv (column error); "
+                   "--retry-failed runs them again\n",
+                   failed,
+                   o.out.c_str());
     return failed > 0 ? 1 : 0;
   }
   std::printf("%s\n", s.BriefReport().c_str());
@@ -130,6 +136,12 @@ int Run(const Opts& o, spallkit::study::MpiWorld& world) {
         "full index\n",
         shard,
         shards);
+  if (s.failed > 0)
+    std::fprintf(stderr,
+                 "spall: %d case(s) failed: their messages are in %s/index.csv (column error); "
+                 "--retry-failed runs them again\n",
+                 static_cast<int>(s.failed),
+                 o.out.c_str());
   return s.failed > 0 ? 1 : 0;
 }
 

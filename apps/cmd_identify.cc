@@ -33,6 +33,9 @@ int Run(const Opts& o) {
   if (o.load_option && o.load_option->count() > 0 &&
       (!(o.load_n > 0.0) || !std::isfinite(o.load_n)))
     throw InputError("--load-n must be > 0 N (got " + std::to_string(o.load_n) + ")");
+  if (o.sensor_option && o.sensor_option->count() > 0 && !(std::abs(o.sensor_angle_deg) <= 180.0))
+    throw InputError("--sensor-angle-deg must be in [-180, 180] (got " +
+                     spallkit::apps::Number(o.sensor_angle_deg) + ")");
   if (o.max_count != -1 && o.max_count < 1)
     throw InputError("--max-count must be >= 1 (got " + std::to_string(o.max_count) + ")");
   const BearingGeometry g = o.input.bearing.Geometry();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_guard.h"
 #include "apps/command.h"
 #include "apps/output_paths.h"
 #include "core/atomic_file.h"
@@ -57,6 +58,8 @@ std::vector<double> ParseSnrList(const std::string& text) {
 
 int Run(const Opts& o) {
   using namespace spallkit;
+  if (!(o.from_s >= 0))
+    throw InputError("--from-s must be >= 0 s (got " + apps::Number(o.from_s) + ")");
   identify::ValidationOptions vo;
   vo.channel = o.channel;
   vo.skip_s = o.from_s;

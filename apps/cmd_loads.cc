@@ -41,10 +41,13 @@ void CheckOptions(const Opts& o, const spallkit::BearingGeometry& bearing) {
   using spallkit::InputError;
   const auto num = [](double v) { return spallkit::apps::Number(v); };
   if (!(o.load_n >= 0)) throw InputError("--load-n must be >= 0 N (got " + num(o.load_n) + ")");
-  if (!(o.rpm >= 0))
-    throw InputError("--rpm must be >= 0 (the speed of the inner ring; got " + num(o.rpm) + ")");
-  if (!(o.roller_length_mm > 0))
-    throw InputError("--roller-length-mm must be > 0 (got " + num(o.roller_length_mm) + ")");
+  if (!(o.rpm >= 0 && o.rpm <= 1e5))
+    throw InputError(
+        "--rpm must be in [0, 100000] (the speed of the inner ring, as a scene's "
+        "operation.speed_rpm; got " +
+        num(o.rpm) + ")");
+  if (!(o.roller_length_mm >= 0.1))
+    throw InputError("--roller-length-mm must be >= 0.1 (got " + num(o.roller_length_mm) + ")");
   if (!(o.clearance_mm >= 0))
     throw InputError("--clearance-mm must be >= 0 (got " + num(o.clearance_mm) +
                      "; preload is not modelled)");

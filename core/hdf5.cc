@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace spallkit::h5 {
 namespace {
@@ -170,7 +171,20 @@ void ReplaceAttribute(hid_t obj, const std::string& name) {
 
 }  // namespace
 
+// HDF5 closes what is still open from an exit handler. A file whose close failed (a full disk)
+// stays half-closed in its tables, and that handler then crashes or reports an endless loop on
+// stderr after the one-line error: the process closes its files itself, so the handler is not
+// installed (H5dont_atexit must come before any other HDF5 call of the process).
+static void SkipExitCleanup() {
+  static const bool once = [] {
+    H5dont_atexit();
+    return true;
+  }();
+  (void)once;
+}
+
 File File::Create(const std::string& path) {
+  SkipExitCleanup();
   ErrorSilencer silence;
   const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (id < 0) Fail(path, "cannot create HDF5 file (does the folder exist and is it writable?)");
@@ -178,6 +192,7 @@ File File::Create(const std::string& path) {
 }
 
 File File::OpenReadOnly(const std::string& path) {
+  SkipExitCleanup();
   ErrorSilencer silence;
   const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
   if (is_hdf5 < 0) Fail(path, "cannot open (no such file or not readable)");
@@ -335,6 +350,15 @@ std::vector<double> File::ReadDataset(const std::string& raw_path,
   }
   Handle space(H5Dget_space(dset.get()), H5Sclose);
   std::vector<size_t> shape = DimsOf(space.get());
+  // The declared size is the file's word: bound it before allocating (a dataset may declare
+  // more elements than were written, or than memory holds). 2^32 doubles = 32 GiB.
+  constexpr double kMaxElements = 4294967296.0;
+  double declared = 1.0;
+  for (size_t d : shape) declared *= static_cast<double>(d);
+  if (declared > kMaxElements)
+    Fail(path_,
+         path + ": declares " + FormatNumber("%.3g", declared) +
+             " values, more than the 2^32 a dataset may hold here");
   size_t total = 1;
   for (size_t d : shape) total *= d;
   std::vector<double> data(total);

@@ -106,7 +106,7 @@ std::vector<LabelledRecord> ReadBenchmarkManifest(const std::string& manifest_pa
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // also numbers the parser cannot hold (1e400)
     throw InputError(manifest_path + ": not valid JSON (" + e.what() + ")");
   }
   const json* list = &j;
@@ -116,8 +116,13 @@ std::vector<LabelledRecord> ReadBenchmarkManifest(const std::string& manifest_pa
   if (list->empty()) throw InputError(manifest_path + ": no records");
   const std::filesystem::path folder = std::filesystem::path(manifest_path).parent_path();
   std::vector<LabelledRecord> out;
-  for (size_t i = 0; i < list->size(); ++i)
-    out.push_back(ParseEntry((*list)[i], folder, manifest_path, i));
+  for (size_t i = 0; i < list->size(); ++i) {
+    try {
+      out.push_back(ParseEntry((*list)[i], folder, manifest_path, i));
+    } catch (const json::exception& e) {  // a value of the wrong type
+      throw InputError(manifest_path + ": record " + std::to_string(i) + ": " + e.what());
+    }
+  }
   return out;
 }
 

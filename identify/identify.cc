@@ -293,6 +293,9 @@ std::string Identification::BriefReport() const {
   os << "diagnosis: " << dsp::VerdictName(diagnosis.verdict) << " (band "
      << FormatNumber("%.0f", diagnosis.band.low_hz) << "-"
      << FormatNumber("%.0f", diagnosis.band.high_hz) << " Hz)\n";
+  // The record's own doubts (clipping, spikes, inseparable races) hold for what follows too.
+  for (const std::string& w : diagnosis.warnings)
+    os << "WARNING (identification not confident): " << w << "\n";
   if (roller_signature)
     os << "rates: f_c " << FormatNumber("%.4f", cage_hz) << " Hz, f_b "
        << FormatNumber("%.3f", 2.0 * spin_hz) << " Hz (refined), "

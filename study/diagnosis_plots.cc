@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "dsp/spectra.h"
 #include "plot/plot.h"
@@ -183,6 +184,9 @@ std::vector<std::string> WriteDiagnosisPlots(const Diagnosis& diagnosis,
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir))
     throw InputError("--plot-dir " + dir + ": cannot create the directory (" + ec.message() + ")");
+  // Every target is checked before the first is written: no partial set of figures.
+  for (const char* name : {"ses.png", "spectrogram.png", "kurtogram.png"})
+    CheckReplaceableOutput((std::filesystem::path(dir) / name).string());
   return {SesPlot(diagnosis, dir),
           SpectrogramPlot(diagnosis, signal, dir),
           KurtogramPlot(diagnosis, dir)};

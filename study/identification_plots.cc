@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/constants.h"
 #include "core/error.h"
 #include "plot/plot.h"
@@ -14,6 +15,9 @@ void WriteIdentificationPlots(const identify::Identification& id, const std::str
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError("--plot-dir " + dir + ": cannot create (" + ec.message() + ")");
   auto path = [&](const char* name) { return (std::filesystem::path(dir) / name).string(); };
+  // Every target is checked before the first is written: no partial set of figures.
+  for (const char* name : {"cage_average.png", "sidebands.png", "delay.png"})
+    CheckReplaceableOutput(path(name));
   if (!id.roller_signature) return;
 
   if (id.cage_average.bins() > 0 && !id.count_fit.best.empty()) {

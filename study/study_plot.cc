@@ -168,10 +168,12 @@ std::vector<std::string> StudyQuantities() {
   return names;
 }
 
-PlottedSeries PlotStudy(const std::string& dir,
-                        const StudyPlotOptions& o,
-                        const std::string& png_path,
-                        const std::string& csv_path) {
+namespace {
+
+PlottedSeries PlotStudyFromIndex(const std::string& dir,
+                                 const StudyPlotOptions& o,
+                                 const std::string& png_path,
+                                 const std::string& csv_path) {
   const fs::path index_path = fs::path(dir) / "index.json";
   std::ifstream in(index_path);
   if (!in)
@@ -286,6 +288,19 @@ PlottedSeries PlotStudy(const std::string& dir,
   plot::WriteLinePlot(png_path, p);
   if (!csv_path.empty()) WriteFileAtomically(csv_path, csv.str());
   return out;
+}
+
+}  // namespace
+
+PlottedSeries PlotStudy(const std::string& dir,
+                        const StudyPlotOptions& o,
+                        const std::string& png_path,
+                        const std::string& csv_path) {
+  try {
+    return PlotStudyFromIndex(dir, o, png_path, csv_path);
+  } catch (const nlohmann::json::exception& e) {  // an index value of the wrong type
+    throw InputError("plot study: " + (fs::path(dir) / "index.json").string() + ": " + e.what());
+  }
 }
 
 }  // namespace spallkit::study

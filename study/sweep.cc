@@ -158,6 +158,11 @@ void DefectAssignments(const Sweep& sweep,
 
 // Rollers for "defects.count" = n: the base defects' rollers, then the next roller numbers.
 std::vector<long long> RollersForCount(const Sweep& sweep, long long n) {
+  // A bound before the list is built (a bearing has tens of rollers; the case scene checks the
+  // numbers against its own).
+  if (n < 0 || n > 1000)
+    throw InputError(std::string(kCountKey) + " = " + std::to_string(n) +
+                     ": expected 0 to 1000 defective rollers (at most the bearing's roller count)");
   std::vector<long long> rollers;
   long long next = 0;
   for (const toml::table& d : BaseDefects(sweep)) {

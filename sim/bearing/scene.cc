@@ -522,9 +522,21 @@ void ReadSensors(Section& top, const SceneGeometry& g, std::vector<Sensor>* sens
   defaults.push_back(toml::table{
       {"name", "side"}, {"x_mm", r_mm}, {"y_mm", 0.0}, {"directions", toml::array{"x"}}});
   toml::array* arr = TableArray(top, "sensors", std::move(defaults));
-  for (std::size_t i = 0; i < arr->size(); ++i)
-    sensors->push_back(ReadSensor(
-        Section(arr->get(i)->as_table(), "sensors." + std::to_string(i) + ".", &top.file()), i));
+  // Each channel is found on the mesh and recorded at the output rate: a bound, well above any
+  // test rig's channel count.
+  constexpr std::size_t kMaxSensors = 256;
+  if (arr->size() > kMaxSensors)
+    top.Fail("sensors",
+             std::to_string(arr->size()) + " sensors, at most " + std::to_string(kMaxSensors));
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    Section s(arr->get(i)->as_table(), "sensors." + std::to_string(i) + ".", &top.file());
+    sensors->push_back(ReadSensor(s, i));
+    if (!names.insert(sensors->back().name).second)
+      s.Fail(
+          "name",
+          "\"" + sensors->back().name + "\" is the name of an earlier sensor (names must differ)");
+  }
 }
 
 void ReadRun(Section s, SceneRun* run, std::vector<Output>* outputs) {

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -39,6 +42,30 @@ TEST(IdentifyCli, TextReport) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("defective rollers: 1"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("depth: not identifiable"), std::string::npos);
+}
+
+// A clipped record: the diagnosis warns, and so does the identification's text report (the
+// clipping distorts the envelope the count and the width are fitted to).
+TEST(IdentifyCli, TextReportCarriesTheRecordWarnings) {
+  const std::filesystem::path clipped =
+      std::filesystem::temp_directory_path() / "spallkit_identify_clipped.csv";
+  {
+    std::ifstream in(kSample);
+    std::ofstream out(clipped);
+    std::string line;
+    while (std::getline(in, line)) {
+      double t = 0, a = 0;
+      if (line.empty() || line[0] == '#' || std::sscanf(line.c_str(), "%lf,%lf", &t, &a) != 2) {
+        out << line << "\n";
+        continue;
+      }
+      out << line.substr(0, line.find(',')) << "," << std::clamp(a, -0.5, 0.5) << "\n";
+    }
+  }
+  const auto r = RunSpall("identify " + clipped.string() + " --bearing N205EM --rpm 1200");
+  std::filesystem::remove(clipped);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("WARNING (identification not confident)"), std::string::npos) << r.out;
 }
 
 TEST(IdentifyCli, BadInputIsOneLineAndCode2) {
