@@ -51,21 +51,40 @@ std::string OneLine(std::string s) {
   return s;
 }
 
-// The folder records which sweep it holds; another sweep file is refused.
-void ClaimFolder(const Sweep& sweep, const std::string& out_dir) {
+// The folder records which sweep it holds (sweep.toml); another sweep file is refused, and so is
+// a folder with files of its own (its index.csv or index.json would be overwritten). Writes
+// nothing.
+void CheckFolder(const Sweep& sweep, const std::string& out_dir) {
   std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec || !fs::is_directory(out_dir))
-    throw InputError(out_dir + ": cannot create the dataset folder (" + ec.message() + ")");
+  if (!fs::exists(out_dir, ec)) return;
+  if (!fs::is_directory(out_dir, ec))
+    throw InputError(out_dir + ": exists and is not a folder (expected the dataset folder)");
   const fs::path copy = fs::path(out_dir) / "sweep.toml";
-  if (fs::exists(copy)) {
+  if (fs::exists(copy, ec)) {
     if (ReadText(copy) != sweep.text)
       throw InputError(copy.string() +
                        ": the folder holds a dataset of another sweep file (the texts differ); "
                        "use another --out or remove the folder");
     return;
   }
-  WriteFileAtomically(copy.string(), sweep.text);
+  // Temporaries are another rank's sweep.toml being written (MPI) or a killed run's leftovers.
+  bool own_files = false;
+  for (const auto& entry : fs::directory_iterator(out_dir, ec))
+    if (entry.path().filename().string().find(".tmp-") == std::string::npos) own_files = true;
+  if (own_files)
+    throw InputError(out_dir +
+                     ": not empty and not a dataset folder (no sweep.toml); use a new or empty "
+                     "folder");
+}
+
+// Creates the folder and records the sweep in it (after CheckFolder and the cases' scenes).
+void ClaimFolder(const Sweep& sweep, const std::string& out_dir) {
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec || !fs::is_directory(out_dir))
+    throw InputError(out_dir + ": cannot create the dataset folder (" + ec.message() + ")");
+  const fs::path copy = fs::path(out_dir) / "sweep.toml";
+  if (!fs::exists(copy)) WriteFileAtomically(copy.string(), sweep.text);
 }
 
 // Runs one case and writes its file; returns the finished entry.
@@ -365,8 +384,11 @@ DatasetSummary RunDataset(const Sweep& sweep, const DatasetOptions& options) {
   std::string error;
   if (!options.Validate(&error)) throw InputError("dataset: " + error);
   const auto start = Clock::now();
-  ClaimFolder(sweep, options.out_dir);
+  // Every case's scene is checked (ScanDataset) before the folder is made: a bad grid value
+  // leaves nothing behind.
+  CheckFolder(sweep, options.out_dir);
   std::vector<IndexEntry> entries = ScanDataset(sweep, options.out_dir);
+  ClaimFolder(sweep, options.out_dir);
 
   DatasetSummary summary;
   summary.out_dir = options.out_dir;
