@@ -319,6 +319,8 @@ Sweep ParseSweep(const std::string& toml_text,
       const std::string where = Where(source_name, v, "post." + key);
       if (key == "noise_snr_db") {
         sweep.post.noise_snr_db = Number(v, where);
+        if (!(std::abs(sweep.post.noise_snr_db) <= 200.0))
+          throw InputError(where + ": expected a signal-to-noise ratio in [-200, 200] dB");
       } else if (key == "diagnose") {
         if (!v.is_boolean()) throw InputError(where + ": expected true or false");
         sweep.post.diagnose = *v.value<bool>();
@@ -422,7 +424,12 @@ std::vector<std::string> CaseOverrides(const Sweep& sweep, const SweepCase& c) {
   for (const auto& [key, value] : all) {
     if (key == kCountKey || key == kRollersKey) continue;
     if (key.rfind(kEveryDefect, 0) == 0) {  // "defects.*.width_mm": every defect of the case
-      const int n = defects >= 0 ? defects : static_cast<int>(BaseDefects(sweep).size());
+      // Without a count or roller list, the base scene's own defects (its default, the paper's
+      // spall, when it lists none).
+      const int n =
+          defects >= 0
+              ? defects
+              : static_cast<int>(sim::ParseScene(sweep.base_text, sweep.base_scene).defects.size());
       for (int i = 0; i < n; ++i)
         out.push_back("defects." + std::to_string(i) + "." + key.substr(10) + "=" +
                       TomlValueText(value));

@@ -122,6 +122,19 @@ cases = 8
   EXPECT_LT(healthy_cases, r.num_cases());
 }
 
+// "defects.*.KEY" sets KEY on every defect of the case; a base scene that lists no [[defects]]
+// has the scene's default one (the paper's spall), which it then sets.
+TEST(SweepTest, EveryDefectKeyReachesTheDefaultSpall) {
+  const Sweep s = Parse("[base]\nscene = \"" + std::string(SPALLKIT_SOURCE_DIR) +
+                        "/tests/reliability/data/fast.toml\"\n[grid]\n\"defects.*.width_mm\" = "
+                        "[0.5, 2.0]\n");
+  for (int i = 0; i < 2; ++i) {
+    const sim::Scene scene = CaseScene(s, MakeCase(s, i));
+    ASSERT_EQ(scene.defects.size(), 1u);
+    EXPECT_DOUBLE_EQ(scene.defects[0].width_m, i == 0 ? 0.5e-3 : 2.0e-3);
+  }
+}
+
 TEST(SweepTest, TomlValueTextRoundTripsDoublesAndKeepsThemFloats) {
   EXPECT_EQ(TomlValueText(1000.0), "1000.0");
   EXPECT_EQ(TomlValueText(0.1), "0.1");
