@@ -68,6 +68,7 @@ int DryRun(const spallkit::study::Sweep& sweep) {
 int Run(const Opts& o, spallkit::study::MpiWorld& world) {
   using namespace spallkit;
   const study::Sweep sweep = study::LoadSweep(o.sweep);
+  if (!o.shard.empty()) ParseShard(o.shard);  // checked before a dry run too
   if (o.dry_run) return world.rank() == 0 ? DryRun(sweep) : 0;
   if (o.out.empty()) throw InputError("dataset run: --out DIR is required");
   // Several processes that cannot talk to each other would all run every case.

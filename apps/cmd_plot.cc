@@ -34,8 +34,10 @@ void ParseBand(const std::string& text, spallkit::study::RecordPlotOptions* o) {
   if (text.empty()) return;
   double lo = 0, hi = 0;
   char tail = 0;
-  if (std::sscanf(text.c_str(), "%lf:%lf%c", &lo, &hi, &tail) != 2)
-    throw spallkit::InputError("plot: --band '" + text + "': expected LOW:HIGH in Hz");
+  if (std::sscanf(text.c_str(), "%lf:%lf%c", &lo, &hi, &tail) != 2 || !std::isfinite(lo) ||
+      !std::isfinite(hi) || !(lo >= 0 && lo < hi))
+    throw spallkit::InputError("plot: --band '" + text +
+                               "': expected LOW:HIGH in Hz, finite, 0 <= LOW < HIGH");
   o->band_low_hz = lo;
   o->band_high_hz = hi;
 }

@@ -288,8 +288,9 @@ std::string Plural(size_t n, const char* word) {
 
 void ValidateOptionRate(const RecordOptions& options, const std::string& name) {
   if (std::isnan(options.sample_rate_hz) || options.sample_rate_hz < 0 ||
-      std::isinf(options.sample_rate_hz)) {
-    throw InputError(name + ": sample rate must be a positive number of Hz, got " +
+      std::isinf(options.sample_rate_hz) || options.sample_rate_hz > kMaxSampleRateHz) {
+    throw InputError(name + ": sample rate must be a positive number of Hz up to " +
+                     FormatNumber(kMaxSampleRateHz) + ", got " +
                      FormatNumber(options.sample_rate_hz));
   }
 }

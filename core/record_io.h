@@ -68,9 +68,13 @@
 
 namespace spallkit {
 
+// The highest sample rate a record may state (1 GHz: above any vibration measurement; record
+// lengths in samples and seconds stay representable).
+inline constexpr double kMaxSampleRateHz = 1e9;
+
 struct RecordOptions {
   // > 0: use this sample rate and ignore the time column / attributes. 0: infer (see above).
-  // < 0 or NaN: InputError.
+  // < 0, NaN or above kMaxSampleRateHz: InputError.
   double sample_rate_hz = 0;
   // CSV: a column name or a 0-based index counting data columns; HDF5: a dataset path.
   // Empty: the default channel (first non-time column; /signals/accel_y).

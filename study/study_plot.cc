@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "core/hdf5.h"
 #include "plot/plot.h"
 #include "sim/bearing/roller_sliding.h"
@@ -183,6 +184,9 @@ PlottedSeries PlotStudyFromIndex(const std::string& dir,
   if (!index.is_object() || !index.contains("cases"))
     throw InputError("plot study: " + index_path.string() + ": not a dataset index");
   if (o.x.empty() || o.y.empty()) throw InputError("plot study: --x and --y are required");
+  if (!(o.from_s >= 0))
+    throw InputError("plot study: --from-s must be >= 0 s (got " + FormatNumber("%.6g", o.from_s) +
+                     ")");
 
   // y: a computed quantity, rms:/PATH, or a numeric field of the index.
   const Quantity* quantity = nullptr;
@@ -235,6 +239,13 @@ PlottedSeries PlotStudyFromIndex(const std::string& dir,
   if (!x_seen)
     throw InputError("plot study: --x " + o.x + ": no such parameter or label in " +
                      index_path.string());
+  for (const std::string& k : group) {
+    bool seen = false;
+    for (const auto& c : index["cases"]) seen = seen || Field(c, k) != nullptr;
+    if (!seen)
+      throw InputError("plot study: --group " + k + ": no such parameter or label in " +
+                       index_path.string());
+  }
   if (!y_seen)
     throw InputError("plot study: --y " + o.y +
                      ": not a label of the index nor one of accel_rms, "
