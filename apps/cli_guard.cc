@@ -1,6 +1,8 @@
 #include "apps/cli_guard.h"
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -120,5 +122,17 @@ std::string OneLine(const std::string& message, std::size_t max_chars) {
 }
 
 std::string Number(double value) { return FormatNumber("%.6g", value); }
+
+CLI::Validator Uint64Digits() {
+  return CLI::Validator(
+      [](std::string& v) -> std::string {
+        std::uint64_t parsed = 0;
+        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), parsed);
+        if (v.empty() || ec != std::errc() || end != v.data() + v.size())
+          return "must be an integer in 0..18446744073709551615";
+        return {};
+      },
+      "");
+}
 
 }  // namespace spallkit::apps

@@ -34,4 +34,8 @@ std::string OneLine(const std::string& message, std::size_t max_chars = 400);
 // A value for a message: "%.6g" ("1e-07", not std::to_string's "0.000000").
 std::string Number(double value);
 
+// For an unsigned 64-bit option (a seed): decimal digits only, within 0..2^64-1 (CLI11 takes
+// "-3" as 2^64 - 3 and lets a too large number through).
+CLI::Validator Uint64Digits();
+
 }  // namespace spallkit::apps

@@ -101,7 +101,8 @@ spallkit::apps::Register reg(
                      o->snr,
                      "comma-separated SNRs in the clean record's diagnosis band, dB; inf = clean "
                      "(default inf)");
-      sub.add_option("--seed", o->seed, "noise seed (default 1)");
+      sub.add_option("--seed", o->seed, "noise seed (default 1)")
+          ->check(spallkit::apps::Uint64Digits());
       o->sensor_option =
           sub.add_option("--sensor-angle-deg",
                          o->sensor_angle_deg,

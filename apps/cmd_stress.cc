@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "apps/cli_guard.h"
 #include "apps/command.h"
 #include "core/error.h"
 #include "sim/stress/stress.h"
@@ -66,12 +67,7 @@ spallkit::apps::Register reg(
       auto o = std::make_shared<Opts>();
       sub.add_option("--scenes", o->stress.scenes, "Number of scenes")->capture_default_str();
       sub.add_option("--seed", o->stress.seed, "Seed of the draw (same scenes on every machine)")
-          ->check(CLI::Validator(  // a uint64 would take "-3" as 2^64 - 3
-              [](std::string& v) {
-                return v.find('-') == std::string::npos ? std::string()
-                                                        : "must be a non-negative integer";
-              },
-              ""))
+          ->check(spallkit::apps::Uint64Digits())
           ->capture_default_str();
       sub.add_option("--fidelity", o->fidelity, "Model of every scene: hybrid, lumped or fe")
           ->capture_default_str();
