@@ -4,7 +4,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config clang-format
+  build-essential cmake ninja-build pkg-config clang-format ccache
   libeigen3-dev libfftw3-dev libhdf5-dev hdf5-tools
   libceres-dev libgoogle-glog-dev libgflags-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
