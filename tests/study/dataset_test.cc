@@ -160,10 +160,11 @@ TEST(DatasetTest, MpiRanksGiveTheSameFilesAsOneWorker) {
   const auto one = testing::RunSpall("dataset run " + sweep + " --out " + dir + "/one --workers 1");
   ASSERT_EQ(one.code, 0) << one.err;
   // As root Open MPI wants both variables; 2 ranks on a 2-core machine need no oversubscription
-  // but allow it for smaller machines.
+  // but allow it for smaller machines. In a sanitizer build the ranks check memory errors but not
+  // leaks: Open MPI's unloaded plug-ins keep allocations at exit that no suppression can name.
   const std::string mpirun =
       "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-      "OMPI_MCA_rmaps_base_oversubscribe=1 mpirun -n 2 ";
+      "OMPI_MCA_rmaps_base_oversubscribe=1 ASAN_OPTIONS=detect_leaks=0 mpirun -n 2 ";
   const std::string cmd = mpirun + SPALLKIT_SPALL_EXE + " dataset run " + sweep + " --out " + dir +
                           "/mpi >" + dir + "/mpi.log 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
