@@ -33,14 +33,18 @@ int Run(const Opts& o) {
                      std::to_string(dsp::DiagnoseOptions::kMaxThreads) + " (got " +
                      std::to_string(o.threads) + ")");
   // The ranges DiagnoseOptions::IsValid checks, named by their options.
-  if (!(o.tolerance_percent > 0 && o.tolerance_percent <= 10))
-    throw InputError("--tolerance-percent must be in (0, 10] (got " +
+  using Limits = dsp::DiagnoseOptions;
+  const double max_tolerance_percent = 100.0 * Limits::kMaxTolerance;
+  if (!(o.tolerance_percent > 0 && o.tolerance_percent <= max_tolerance_percent))
+    throw InputError("--tolerance-percent must be in (0, " +
+                     spallkit::apps::Number(max_tolerance_percent) + "] (got " +
                      spallkit::apps::Number(o.tolerance_percent) + ")");
   if (!(o.false_alarm > 0 && o.false_alarm < 1))
     throw InputError("--false-alarm must be in (0, 1) (got " +
                      spallkit::apps::Number(o.false_alarm) + ")");
-  if (o.harmonics < 1 || o.harmonics > 20)
-    throw InputError("--harmonics must be in 1..20 (got " + std::to_string(o.harmonics) + ")");
+  if (o.harmonics < 1 || o.harmonics > Limits::kMaxHarmonics)
+    throw InputError("--harmonics must be in 1.." + std::to_string(Limits::kMaxHarmonics) +
+                     " (got " + std::to_string(o.harmonics) + ")");
   const BearingGeometry g = o.input.bearing.Geometry();
   const Record record = o.input.Read();
 

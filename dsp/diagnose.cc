@@ -60,8 +60,10 @@ bool DiagnoseOptions::IsValid(std::string* error) const {
     if (error) *error = m;
     return false;
   };
-  if (harmonics < 1 || harmonics > 20) return fail("harmonics must be in 1..20");
-  if (!(tolerance > 0.0 && tolerance <= 0.1)) return fail("tolerance must be in (0, 10] %");
+  if (harmonics < 1 || harmonics > kMaxHarmonics)
+    return fail("harmonics must be in 1.." + std::to_string(kMaxHarmonics));
+  if (!(tolerance > 0.0 && tolerance <= kMaxTolerance))
+    return fail("tolerance must be in (0, " + FormatNumber("%.3g", 100 * kMaxTolerance) + "] %");
   if (!(speed_search >= 0.0 && speed_search <= 0.2))
     return fail("speed search must be in [0, 20] %");
   if (!(false_alarm_probability > 0.0 && false_alarm_probability < 1.0))

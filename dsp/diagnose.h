@@ -87,6 +87,8 @@ struct DiagnoseOptions {
   // bit-identical for every thread count; only the wall time changes.
   int threads = 0;
   static constexpr int kMaxThreads = 64;
+  static constexpr int kMaxHarmonics = 20;
+  static constexpr double kMaxTolerance = 0.1;  // 10 %
 
   bool IsValid(std::string* error) const;
 };

@@ -137,6 +137,15 @@ std::vector<toml::table> BaseDefects(const Sweep& sweep) {
   return out;
 }
 
+// How many defects the base scene has: its [[defects]], or the scene's default (the paper's
+// spall) when it lists none.
+int BaseDefectCount(const Sweep& sweep) {
+  const toml::table root = sim::ParseToml(sweep.base_text, sweep.base_scene);
+  if (const auto* arr = root["defects"].as_array()) return static_cast<int>(arr->size());
+  static const int kDefault = static_cast<int>(sim::ParseScene("", "default.toml").defects.size());
+  return kDefault;
+}
+
 // Assignments that give the scene exactly `rollers.size()` defects on those rollers.
 void DefectAssignments(const Sweep& sweep,
                        const std::vector<long long>& rollers,
@@ -424,12 +433,8 @@ std::vector<std::string> CaseOverrides(const Sweep& sweep, const SweepCase& c) {
   for (const auto& [key, value] : all) {
     if (key == kCountKey || key == kRollersKey) continue;
     if (key.rfind(kEveryDefect, 0) == 0) {  // "defects.*.width_mm": every defect of the case
-      // Without a count or roller list, the base scene's own defects (its default, the paper's
-      // spall, when it lists none).
-      const int n =
-          defects >= 0
-              ? defects
-              : static_cast<int>(sim::ParseScene(sweep.base_text, sweep.base_scene).defects.size());
+      // Without a count or roller list, the base scene's own defects.
+      const int n = defects >= 0 ? defects : BaseDefectCount(sweep);
       for (int i = 0; i < n; ++i)
         out.push_back("defects." + std::to_string(i) + "." + key.substr(10) + "=" +
                       TomlValueText(value));

@@ -289,13 +289,17 @@ double RollerContacts::Contact(
   // (RaceContacts): V = V(d_1) + V(d_2) - V(d_s), d_s = d_1 + d_2 - d_c the shared zone's
   // depth, whose forces are Q(d_k) - Q(d_s) at the edges and Q(d_s) at the circle's point.
   double qe_pt[3] = {0, 0, 0}, kn_pt[3] = {0, 0, 0};
+  // Palmgren's law at penetration d > 0: load, stiffness dQ/dd and potential 9/19 Q d.
+  auto palmgren_law = [&](double d, double* load, double* stiffness) {
+    *load = scale * k_c_ * std::pow(d, 10.0 / 9.0);
+    *stiffness = 10.0 / 9.0 * *load / d;
+    return *load * d * (9.0 / 19.0);
+  };
   for (int k = 0; k < std::min(npts, 2); ++k) {
     const double d = pts[k].delta;
     if (!(d > 0)) continue;
     if (palmgren) {
-      qe_pt[k] = scale * k_c_ * std::pow(d, 10.0 / 9.0);
-      kn_pt[k] = 10.0 / 9.0 * qe_pt[k] / d;
-      step_potential_ += qe_pt[k] * d * (9.0 / 19.0);
+      step_potential_ += palmgren_law(d, &qe_pt[k], &kn_pt[k]);
     } else {
       kn_pt[k] = options_.cage_stiffness_n_per_m;
       qe_pt[k] = kn_pt[k] * d;
@@ -305,9 +309,8 @@ double RollerContacts::Contact(
   if (npts == 3) {
     const double shared = pts[0].delta + pts[1].delta - pts[2].delta;
     if (palmgren && shared > 0) {
-      const double qs = scale * k_c_ * std::pow(shared, 10.0 / 9.0);
-      const double ks = 10.0 / 9.0 * qs / shared;
-      step_potential_ -= qs * shared * (9.0 / 19.0);
+      double qs, ks;
+      step_potential_ -= palmgren_law(shared, &qs, &ks);
       for (int k = 0; k < 2; ++k) {
         qe_pt[k] = std::max(0.0, qe_pt[k] - qs);
         kn_pt[k] = std::max(0.0, kn_pt[k] - ks);
