@@ -70,9 +70,10 @@ double InnerRingRadialPeriod(const Scene& scene) {
 
 double DynamicLoadFactor(const Scene& scene) {
   if (!(scene.operation.radial_load_n > 0)) return 1.0;
-  const double period = InnerRingRadialPeriod(scene);
   const double ramp = scene.operation.load_ramp_s;
-  if (!(period > 0) || !(ramp > 0)) return 2.0;
+  if (!(ramp > 0)) return 2.0;  // a step: no period needed
+  const double period = InnerRingRadialPeriod(scene);
+  if (!(period > 0)) return 2.0;
   return std::min(2.0, 1.0 + period / (kPi * ramp));
 }
 
