@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/checkpoint_io.h"
 #include "core/constants.h"
@@ -108,7 +109,6 @@ RollerContacts::RollerContacts(const Scene& scene,
     const double polar =
         f * (sp.polar + sp.area * ((sp.cx - cx) * (sp.cx - cx) + (sp.cy - cy) * (sp.cy - cy))) +
         (1 - f) * (polar_c + a_c * (cx * cx + cy * cy));
-    profiles_.push_back(p);
     intact_profiles_.push_back(p);
     intact_profiles_.back().spalled = false;
     spall_fraction_.push_back(p.spalled ? f : 1.0);
@@ -119,13 +119,19 @@ RollerContacts::RollerContacts(const Scene& scene,
     pocket_angle_.push_back(phi);
     pocket_cos_.push_back(std::cos(phi));
     pocket_sin_.push_back(std::sin(phi));
-    directions_.emplace_back(p);
     intact_directions_.emplace_back(intact_profiles_.back());
+    // Seated (HybridOptions::seat_rollers): touching the outer raceway along the pocket line.
+    profiles_.push_back(p);
+    directions_.emplace_back(p);
+    const double centre_radius = options_.seat_rollers
+                                     ? SeatOnOuterRace(j, phi, housing.outer_raceway_radius_m)
+                                     : housing.pitch_radius_m;
     Body b;
-    b.x = housing.pitch_radius_m * std::cos(phi) + cx;
-    b.y = housing.pitch_radius_m * std::sin(phi) + cy;
+    b.x = centre_radius * std::cos(phi) + cx;
+    b.y = centre_radius * std::sin(phi) + cy;
     rollers_.push_back(b);
   }
+  if (options_.seat_rollers) shaft_.y = -SeatedShaftDrop();
 
   // Cage webs: the annulus minus the Z pockets (polar-grid quadrature).
   {
@@ -201,6 +207,61 @@ void RollerContacts::RollerCentre(int j, double* x, double* y) const {
   const double c = std::cos(b.angle), s = std::sin(b.angle);
   *x = b.x - (c * centroid_x_[j] - s * centroid_y_[j]);
   *y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
+}
+
+int RollerContacts::ContactCircles(
+    int j, double cx, double cy, double ux, double uy, double out[2][3]) const {
+  // Body angle 0 (the start): body frame = world frame.
+  const RollerProfile& p = profiles_[j];
+  if (!p.spalled || !directions_[j].InSpall(ux, uy)) {
+    out[0][0] = cx, out[0][1] = cy, out[0][2] = p.radius;
+    return 1;
+  }
+  const double* kx = directions_[j].corner_x();
+  const double* ky = directions_[j].corner_y();
+  for (int k = 0; k < 2; ++k) out[k][0] = cx + kx[k], out[k][1] = cy + ky[k], out[k][2] = p.edge_radius;
+  return 2;
+}
+
+double RollerContacts::SeatOnOuterRace(int j, double phi, double outer_radius) const {
+  // The circles that face the race (the intact circle, or the two rim fillets of a spall facing
+  // it) against the raceway circle: the rim edges sit off the centre line, where the concave
+  // race is closer, so the largest penetration is driven to zero by a few Newton-like steps.
+  const double ux = std::cos(phi), uy = std::sin(phi);
+  double rho = outer_radius - profiles_[j].Support(phi);
+  for (int it = 0; it < 8; ++it) {
+    double circles[2][3];
+    const int n = ContactCircles(j, rho * ux, rho * uy, ux, uy, circles);
+    double penetration = -std::numeric_limits<double>::infinity();
+    for (int k = 0; k < n; ++k)
+      penetration = std::max(penetration,
+                             std::hypot(circles[k][0], circles[k][1]) + circles[k][2] - outer_radius);
+    rho -= penetration;
+  }
+  return rho;
+}
+
+double RollerContacts::SeatedShaftDrop() const {
+  // The load acts along -y. Lowering the shaft centre by s, a roller circle (centre q, radius a;
+  // the intact circle or a rim fillet facing the bearing centre) touches the raceway when
+  // |q - (0, -s)| = R_i + a: the smaller root s = -q_y - sqrt((R_i + a)^2 - q_x^2) for a circle
+  // below the centre line.
+  double drop = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < static_cast<int>(rollers_.size()); ++j) {
+    double x, y;
+    RollerCentre(j, &x, &y);
+    const double d = std::hypot(x, y);
+    double circles[2][3];
+    const int n = ContactCircles(j, x, y, -x / d, -y / d, circles);
+    for (int k = 0; k < n; ++k) {
+      const double qx = circles[k][0], qy = circles[k][1], reach = inner_radius_ + circles[k][2];
+      const double disc = reach * reach - qx * qx;
+      if (!(qy < 0) || disc < 0) continue;
+      const double s = -qy - std::sqrt(disc);
+      if (s >= 0) drop = std::min(drop, s);
+    }
+  }
+  return std::isfinite(drop) ? drop : 0.0;
 }
 
 int RollerContacts::RacePoints(int j,

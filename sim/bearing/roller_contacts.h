@@ -66,6 +66,12 @@ struct HybridOptions {
   // Half-width L of the kernel that spreads an outer-race contact over raceway nodes; 0: the
   // larger of 1 mm and 2 raceway node spacings (raceway_kernel.h; hybrid model only).
   double spread_half_width_m = 0.0;
+  // Start seated: each roller touches the outer race (its profile's extreme point, the rim
+  // edges where its spall faces the race) and the inner ring is lowered along the load until
+  // it touches the first roller, so the ramped load builds on closed contacts. Centred (false):
+  // rollers on the pitch circle, ring centred; the load then first closes the clearance and
+  // the ring strikes the rollers (a start-up impact that rings the housing for milliseconds).
+  bool seat_rollers = true;
 
   bool IsValid(std::string* error) const;
 };
@@ -158,6 +164,16 @@ class RollerContacts {
 
  private:
   enum class Counter { kOuterRace, kShaft, kCage };
+  // HybridOptions::seat_rollers: how far the shaft is lowered (m, along the load) to touch the
+  // first roller, the rollers already on the outer raceway.
+  double SeatedShaftDrop() const;
+  // Roller j's distance from the bearing centre (m) at which its profile along angle phi
+  // touches a rigid raceway circle of outer_radius from inside.
+  double SeatOnOuterRace(int j, double phi, double outer_radius) const;
+  // The circles of roller j (circle centre (cx, cy), body angle 0) that face the world unit
+  // direction (ux, uy): the intact circle, or the two rim fillets where the spall faces it;
+  // out[k] = {x, y, radius}. Returns how many.
+  int ContactCircles(int j, double cx, double cy, double ux, double uy, double out[2][3]) const;
   // Candidate points of roller j against the outer (which = 0) or inner (1) race: positions of
   // the circle centre or the two rim fillet centres, normal along the centre line. With the rim
   // pair (returns 2), out[2] is the intact circle's point towards the race.

@@ -184,12 +184,14 @@ TEST(LumpedModelTest, RollersRollAndTheCageFollowsPureRolling) {
 }
 
 // A radial load applied at once overshoots: the inner ring on the bearing's radial stiffness is
-// an oscillator, whose peak under a step is twice its static deflection, first reached half a
-// period after the step. The scene limits take the contact stress at that peak
-// (sim/bearing/scene_limits.h, DynamicLoadFactor): the undamped lumped model at rest must show
-// the same peak roller load, at the time the Harris-Jones stiffness predicts, and no overshoot
-// under the default 5 ms ramp.
-TEST(LumpedModelTest, SuddenLoadPeaksAtTwiceTheStaticRollerLoad) {
+// an oscillator, whose peak under a step is at most twice its static deflection, first reached
+// half a period after the step. The scene limits take the contact stress at that bound
+// (sim/bearing/scene_limits.h, DynamicLoadFactor). The lumped model at rest (seated: contacts
+// closed, so no clearance to fall through) must peak near that bound but not above it: its 10 %
+// contact damping alone would take a linear oscillator to 1 + exp(-0.1 pi) = 1.73, the
+// stiffening Palmgren contacts push it up. The peak must come at the time the Harris-Jones
+// stiffness predicts, and the default 5 ms ramp must not overshoot.
+TEST(LumpedModelTest, SuddenLoadPeaksBelowTwiceTheStaticRollerLoad) {
   auto peak_over_static = [](double ramp_s, double* t_peak) {
     const Scene scene = LumpedScene({"operation.speed_rpm=0",
                                      "operation.load_ramp_s=" + std::to_string(ramp_s),
@@ -222,7 +224,8 @@ TEST(LumpedModelTest, SuddenLoadPeaksAtTwiceTheStaticRollerLoad) {
               1e6 * t_step,
               0.5e6 * period,
               ramp);
-  EXPECT_NEAR(step, DynamicLoadFactor(scene), 0.15);
+  EXPECT_GT(step, 1.6);
+  EXPECT_LE(step, DynamicLoadFactor(scene));
   EXPECT_NEAR(t_step / (0.5 * period), 1.0, 0.3);
   EXPECT_LT(ramp, 1.03);
 }
