@@ -1,7 +1,7 @@
 // spall bench ladder [SCENE...] [--quick] [--json] [--plot pareto.png] [--duration-s T]
 // [--set key=value]...:
 // runs the scenes at every rung of the fidelity ladder on one thread and prints each rung's wall
-// time per simulated second and its errors against the finest rung run (sim/bearing/
+// time per simulated second and its errors against the finest rung run (study/
 // fidelity_ladder.h). Default scenes: the paper's verification scene, the same bearing healthy,
 // and three defective rollers (datasets/scenes/rollers-3.toml); friction at the EHL traction
 // level 0.15 / 0.12, above the spall's tipping threshold, so every rung rolls the spall through
@@ -20,8 +20,8 @@
 #include "apps/output_paths.h"
 #include "core/error.h"
 #include "plot/line_plot.h"
-#include "sim/bearing/fidelity_ladder.h"
 #include "sim/bearing/scene_limits.h"
+#include "study/fidelity_ladder.h"
 
 namespace {
 
@@ -36,6 +36,7 @@ struct Opts {
 
 int Run(const Opts& o) {
   using namespace spallkit::sim;
+  using namespace spallkit::study;
   // The scene limit on simulated time (sim/bearing/scene_limits.h), and the plot's path, before
   // any rung runs.
   if (!(o.duration_s > 0 && o.duration_s <= SceneLimits{}.max_duration_s))
@@ -104,6 +105,7 @@ int Run(const Opts& o) {
                          {"roller_load", r.roller_load},
                          {"rms", r.rms},
                          {"kurtosis", r.kurtosis},
+                         {"ses_correlation", r.ses_correlation},
                          {"roller_load_vs_harris_jones", r.roller_load_vs_harris_jones}}},
                        {"max_energy_balance_error", r.max_energy_balance_error}});
     nlohmann::json j = {

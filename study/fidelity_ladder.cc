@@ -1,16 +1,20 @@
-#include "sim/bearing/fidelity_ladder.h"
+#include "study/fidelity_ladder.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
+#include "core/bearing.h"
 #include "core/constants.h"
 #include "core/error.h"
+#include "dsp/envelope.h"
 #include "sim/bearing/simulation.h"
 #include "sim/quasistatic/harris_jones.h"
 
-namespace spallkit::sim {
+namespace spallkit::study {
 namespace {
+
+using namespace sim;
 
 double RelativeError(double value, double reference) {
   return reference != 0.0 ? std::abs(value / reference - 1.0) : std::abs(value);
@@ -75,11 +79,43 @@ LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duratio
   for (size_t i = 0; i < t.size() && i < accel.size(); ++i)
     if (t[i] >= from) m4 += std::pow(accel[i] - mean, 4);
   m.kurtosis = m.rms > 0 ? m4 / n / std::pow(m.rms, 4) : 0.0;
+  {
+    // SES of the vertical acceleration after the ramps (module comment).
+    std::vector<double> x;
+    for (size_t i = 0; i < t.size() && i < accel.size(); ++i)
+      if (t[i] >= from) x.push_back(accel[i]);
+    const double fs = s.run.output_rate_hz;
+    const double f_b =
+        ComputeFrequencies(s.geometry.bearing, s.operation.inner_ring_speed_rad_s / (2 * kPi))
+            .f_b_hz;
+    dsp::EnvelopeOptions eo;
+    eo.max_alpha_hz = 5.0 * f_b;
+    const dsp::EnvelopeSpectrum ses =
+        dsp::SquaredEnvelopeSpectrum(x, fs, dsp::Band{500.0, 0.45 * fs}, eo);
+    m.ses.assign(ses.level.begin() + (ses.level.empty() ? 0 : 1), ses.level.end());
+  }
   m.harris_jones_load_n = HarrisJonesQmax(s);
   m.wall_s = sum.wall_seconds;
   m.simulated_s = sum.time;
   m.energy_balance_error = sum.energy_balance_error;
   return m;
+}
+
+// 1 - Pearson correlation of two spectra over their common bins (1 when either is flat).
+double SesCorrelationError(const std::vector<double>& a, const std::vector<double>& b) {
+  const size_t n = std::min(a.size(), b.size());
+  if (n < 2) return 1.0;
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < n; ++i) ma += a[i], mb += b[i];
+  ma /= n, mb /= n;
+  double sab = 0, saa = 0, sbb = 0;
+  for (size_t i = 0; i < n; ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  if (!(saa > 0 && sbb > 0)) return 1.0;
+  return std::max(0.0, 1.0 - sab / std::sqrt(saa * sbb));
 }
 
 }  // namespace
@@ -141,6 +177,7 @@ LadderSummary RunFidelityLadder(const LadderOptions& options,
       s.roller_load = std::max(s.roller_load, RelativeError(m.roller_load_n, ref.roller_load_n));
       s.rms = std::max(s.rms, RelativeError(m.rms, ref.rms));
       s.kurtosis = std::max(s.kurtosis, RelativeError(m.kurtosis, ref.kurtosis));
+      s.ses_correlation = std::max(s.ses_correlation, SesCorrelationError(m.ses, ref.ses));
       s.roller_load_vs_harris_jones = std::max(
           s.roller_load_vs_harris_jones, RelativeError(m.roller_load_n, m.harris_jones_load_n));
       s.max_energy_balance_error = std::max(s.max_energy_balance_error, m.energy_balance_error);
@@ -154,13 +191,13 @@ LadderSummary RunFidelityLadder(const LadderOptions& options,
 std::string LadderSummary::Table() const {
   std::ostringstream os;
   os.precision(3);
-  os << "rung            wall s/sim s   f_b %   f_c %  slip pp  load %  rms %  kurt %  "
+  os << "rung            wall s/sim s   f_b %   f_c %  slip pp  load %  rms %  kurt %  SES %  "
         "load-HJ %  energy %\n";
   char line[256];
   for (const LadderRungSummary& r : rungs) {
     std::snprintf(line,
                   sizeof line,
-                  "%-15s %12.3g %7.3f %7.3f %8.3f %7.2f %6.1f %7.1f %9.2f %9.3f\n",
+                  "%-15s %12.3g %7.3f %7.3f %8.3f %7.2f %6.1f %7.1f %6.1f %9.2f %9.3f\n",
                   r.rung.Label().c_str(),
                   r.wall_s_per_simulated_s,
                   100 * r.f_b,
@@ -169,6 +206,7 @@ std::string LadderSummary::Table() const {
                   100 * r.roller_load,
                   100 * r.rms,
                   100 * r.kurtosis,
+                  100 * r.ses_correlation,
                   100 * r.roller_load_vs_harris_jones,
                   100 * r.max_energy_balance_error);
     os << line;
@@ -176,4 +214,4 @@ std::string LadderSummary::Table() const {
   return os.str();
 }
 
-}  // namespace spallkit::sim
+}  // namespace spallkit::study

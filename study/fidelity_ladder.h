@@ -6,7 +6,11 @@
 // Measured per run (after twice the speed ramp): f_c = mean cage speed / 2 pi, f_b = 2 |w_r - w_c|
 // / 2 pi of the first defective roller (a healthy scene: roller 0), the cage slip ratio, the
 // largest healthy-roller outer load (99th percentile over the samples of the largest
-// healthy-roller load), RMS and kurtosis of the vertical acceleration, the energy balance.
+// healthy-roller load), RMS and kurtosis of the vertical acceleration, its squared envelope
+// spectrum (SES; band 500 Hz to 0.45 of the output rate, cyclic frequencies up to five times the
+// kinematic f_b), the energy balance. The SES error of a rung is 1 - the correlation coefficient
+// of its SES with the reference's over those cyclic frequencies: 0 when the fault comb has the
+// same shape, whatever the sensor's gain.
 #pragma once
 
 #include <functional>
@@ -16,7 +20,10 @@
 #include "sim/bearing/bearing_model.h"
 #include "sim/bearing/scene.h"
 
-namespace spallkit::sim {
+namespace spallkit::study {
+
+using sim::Fidelity;
+using sim::Scene;
 
 struct LadderRung {
   Fidelity fidelity = Fidelity::kLumped;
@@ -37,6 +44,7 @@ struct LadderMetrics {
   double f_b_hz = 0, f_c_hz = 0, cage_slip = 0, roller_load_n = 0, rms = 0, kurtosis = 0;
   double harris_jones_load_n = 0;  // Q_max of the same scene
   double wall_s = 0, simulated_s = 0, energy_balance_error = 0;
+  std::vector<double> ses;  // SES level of the vertical acceleration, bins 1.. (see above)
 };
 
 struct LadderRun {
@@ -51,6 +59,7 @@ struct LadderRungSummary {
   // Largest relative error over the scenes against the finest rung (cage_slip: absolute
   // difference of the slip ratio); roller_load_vs_harris_jones against the quasi-static load.
   double f_b = 0, f_c = 0, cage_slip = 0, roller_load = 0, rms = 0, kurtosis = 0;
+  double ses_correlation = 0;  // 1 - correlation coefficient of the SES with the reference's
   double roller_load_vs_harris_jones = 0;
   double max_energy_balance_error = 0;
 };
@@ -66,4 +75,4 @@ struct LadderSummary {
 LadderSummary RunFidelityLadder(const LadderOptions& options,
                                 const std::function<void(const std::string&)>& progress = {});
 
-}  // namespace spallkit::sim
+}  // namespace spallkit::study

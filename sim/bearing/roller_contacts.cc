@@ -219,7 +219,8 @@ int RollerContacts::ContactCircles(
   }
   const double* kx = directions_[j].corner_x();
   const double* ky = directions_[j].corner_y();
-  for (int k = 0; k < 2; ++k) out[k][0] = cx + kx[k], out[k][1] = cy + ky[k], out[k][2] = p.edge_radius;
+  for (int k = 0; k < 2; ++k)
+    out[k][0] = cx + kx[k], out[k][1] = cy + ky[k], out[k][2] = p.edge_radius;
   return 2;
 }
 
@@ -234,8 +235,8 @@ double RollerContacts::SeatOnOuterRace(int j, double phi, double outer_radius) c
     const int n = ContactCircles(j, rho * ux, rho * uy, ux, uy, circles);
     double penetration = -std::numeric_limits<double>::infinity();
     for (int k = 0; k < n; ++k)
-      penetration = std::max(penetration,
-                             std::hypot(circles[k][0], circles[k][1]) + circles[k][2] - outer_radius);
+      penetration = std::max(
+          penetration, std::hypot(circles[k][0], circles[k][1]) + circles[k][2] - outer_radius);
     rho -= penetration;
   }
   return rho;

@@ -15,7 +15,6 @@
 #include "core/error.h"
 #include "core/hdf5.h"
 #include "sim/bearing/fidelity_choice.h"
-#include "sim/bearing/fidelity_ladder.h"
 #include "sim/bearing/model_builder.h"
 #include "sim/bearing/raceway_kernel.h"
 #include "sim/bearing/scene.h"
@@ -352,36 +351,6 @@ TEST(FidelityChoiceTest, AutoPicksTheCheapestRungWithinTheTolerance) {
   EXPECT_EQ(f.ReadStringAttribute("/", "fidelity").value_or(""), "lumped");
   EXPECT_EQ(f.ReadStringAttribute("/", "fidelity_reason").value_or(""), to_lumped.reason);
   std::remove(o.output_path.c_str());
-}
-
-// The ladder's books: a rung run twice is deterministic, so against itself every error is exactly
-// 0, while the kinematics it measured are the rolling bearing's (cage near pure rolling); options
-// with fewer than two rungs are refused.
-TEST(FidelityLadderTest, ARungAgainstItselfHasNoErrorAndOptionsAreChecked) {
-  LadderOptions o;
-  o.scenes.emplace_back("paper",
-                        LumpedScene({"operation.speed_rpm=6000", "operation.ramp_s=0.002"}));
-  o.rungs = {{Fidelity::kLumped, 0.0}, {Fidelity::kLumped, 0.0}};
-  o.duration_s = 0.02;
-  const LadderSummary s = RunFidelityLadder(o);
-  ASSERT_EQ(s.runs.size(), 2u);
-  ASSERT_EQ(s.rungs.size(), 2u);
-  for (const LadderRungSummary& r : s.rungs) {
-    EXPECT_EQ(r.f_b, 0.0);
-    EXPECT_EQ(r.f_c, 0.0);
-    EXPECT_EQ(r.cage_slip, 0.0);
-    EXPECT_EQ(r.rms, 0.0);
-    EXPECT_GT(r.wall_s_per_simulated_s, 0.0);
-  }
-  const LadderMetrics& m = s.runs[0].metrics;
-  const BearingGeometry& g = o.scenes[0].second.geometry.bearing;
-  const double fc_pure = 0.5 * 100.0 * (1.0 - g.element_diameter_m / g.pitch_diameter_m);
-  EXPECT_NEAR(m.f_c_hz / fc_pure, 1.0, 0.02);  // after only 20 ms with the 2 ms ramp
-  EXPECT_GT(m.f_b_hz, 0.0);
-  EXPECT_GT(m.harris_jones_load_n, 0.0);
-  std::printf("%s", s.Table().c_str());
-  o.rungs.pop_back();
-  EXPECT_THROW(RunFidelityLadder(o), InputError);
 }
 
 }  // namespace
