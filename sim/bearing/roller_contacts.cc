@@ -210,18 +210,21 @@ void RollerContacts::RollerCentre(int j, double* x, double* y) const {
 }
 
 int RollerContacts::ContactCircles(
-    int j, double cx, double cy, double ux, double uy, double out[2][3]) const {
-  // Body angle 0 (the start): body frame = world frame.
+    int j, double cx, double cy, double ux, double uy, double out[3][3]) const {
+  // Body angle 0 (the start): body frame = world frame. The intact circle always counts when
+  // the spall is shorter than the roller (its intact length reaches further than the rim edges).
   const RollerProfile& p = profiles_[j];
-  if (!p.spalled || !directions_[j].InSpall(ux, uy)) {
-    out[0][0] = cx, out[0][1] = cy, out[0][2] = p.radius;
-    return 1;
+  const bool faces_spall = p.spalled && directions_[j].InSpall(ux, uy);
+  int n = 0;
+  if (!faces_spall || spall_fraction_[j] < 1.0)
+    out[n][0] = cx, out[n][1] = cy, out[n++][2] = p.radius;
+  if (faces_spall) {
+    const double* kx = directions_[j].corner_x();
+    const double* ky = directions_[j].corner_y();
+    for (int k = 0; k < 2; ++k)
+      out[n][0] = cx + kx[k], out[n][1] = cy + ky[k], out[n++][2] = p.edge_radius;
   }
-  const double* kx = directions_[j].corner_x();
-  const double* ky = directions_[j].corner_y();
-  for (int k = 0; k < 2; ++k)
-    out[k][0] = cx + kx[k], out[k][1] = cy + ky[k], out[k][2] = p.edge_radius;
-  return 2;
+  return n;
 }
 
 double RollerContacts::SeatOnOuterRace(int j, double phi, double outer_radius) const {
@@ -231,7 +234,7 @@ double RollerContacts::SeatOnOuterRace(int j, double phi, double outer_radius) c
   const double ux = std::cos(phi), uy = std::sin(phi);
   double rho = outer_radius - profiles_[j].Support(phi);
   for (int it = 0; it < 8; ++it) {
-    double circles[2][3];
+    double circles[3][3];
     const int n = ContactCircles(j, rho * ux, rho * uy, ux, uy, circles);
     double penetration = -std::numeric_limits<double>::infinity();
     for (int k = 0; k < n; ++k)
@@ -252,7 +255,7 @@ double RollerContacts::SeatedShaftDrop() const {
     double x, y;
     RollerCentre(j, &x, &y);
     const double d = std::hypot(x, y);
-    double circles[2][3];
+    double circles[3][3];
     const int n = ContactCircles(j, x, y, -x / d, -y / d, circles);
     for (int k = 0; k < n; ++k) {
       const double qx = circles[k][0], qy = circles[k][1], reach = inner_radius_ + circles[k][2];

@@ -171,9 +171,10 @@ class RollerContacts {
   // touches a rigid raceway circle of outer_radius from inside.
   double SeatOnOuterRace(int j, double phi, double outer_radius) const;
   // The circles of roller j (circle centre (cx, cy), body angle 0) that face the world unit
-  // direction (ux, uy): the intact circle, or the two rim fillets where the spall faces it;
-  // out[k] = {x, y, radius}. Returns how many.
-  int ContactCircles(int j, double cx, double cy, double ux, double uy, double out[2][3]) const;
+  // direction (ux, uy): the intact circle, and the two rim fillets where the spall faces it
+  // (then the circle only for a spall shorter than the roller); out[k] = {x, y, radius}.
+  // Returns how many.
+  int ContactCircles(int j, double cx, double cy, double ux, double uy, double out[3][3]) const;
   // Candidate points of roller j against the outer (which = 0) or inner (1) race: positions of
   // the circle centre or the two rim fillet centres, normal along the centre line. With the rim
   // pair (returns 2), out[2] is the intact circle's point towards the race.
