@@ -315,15 +315,21 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   //    (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the cage wall k_c on the translation.
   //    The hybrid's bound 6 (k_n + k_t) / m is the sum of the two, 1.8x in omega^2; the rigid
   //    ring's mass is large against the roller's, so the ring side does not limit.
+  //    With friction.model = "ehl" the race contacts have no stick spring (the traction curve
+  //    of the slide-to-roll ratio, capped per step to what stops the slip, is stable at any
+  //    step): only the pocket walls' (k_c, and their stick springs 3.3 ratio k_c on the rim).
   //  - the ring oscillators, with their damping.
   {
     const double kn = rollers_.bound_normal_stiffness();
-    const double kt = options_.hybrid.tangential_stiffness_ratio * kn;
+    const double ratio = options_.hybrid.tangential_stiffness_ratio;
+    const double kc = options_.hybrid.cage_stiffness_n_per_m;
     double m_min = rollers_.roller_mass(0);
     for (int j = 0; j < rollers_.num_rollers(); ++j)
       m_min = std::min(m_min, rollers_.roller_mass(j));
-    const double omega =
-        std::sqrt(std::max(3.0 * kn, 7.0 * kt + options_.hybrid.cage_stiffness_n_per_m) / m_min);
+    const double k_rim = scene_.friction.model == contact::TractionModel::kEhl
+                             ? kc * (1.0 + 3.3 * ratio)
+                             : 7.0 * ratio * kn + kc;
+    const double omega = std::sqrt(std::max(3.0 * kn, k_rim) / m_min);
     const double zeta = options_.hybrid.contact_damping_ratio;
     dt_stable_ =
         options_.lumped.time_step_safety * 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta);
