@@ -79,10 +79,44 @@ std::vector<std::vector<cv::Point>> SeriesPolylines(const LineSeries& s,
   return lines;
 }
 
+// A log axis's range: the positive data range, at most 6 decades below the maximum, 5 % padding
+// in log space; widened to whole decades when it spans less than one. Fixed ends (not NaN) win.
+void LogRange(const LinePlot& plot,
+              const Range& pos,
+              double fixed_lo,
+              double fixed_hi,
+              Axis* a,
+              const char* name) {
+  if (!pos.valid && (std::isnan(fixed_lo) || std::isnan(fixed_hi))) {
+    throw InputError("line plot '" + plot.title + "': log " + name + " axis but no positive " +
+                     name + " value");
+  }
+  double hi = std::isnan(fixed_hi) ? pos.hi : fixed_hi;
+  double lo = std::isnan(fixed_lo) ? std::max(pos.lo, hi * 1e-6) : fixed_lo;
+  if (lo > 0 && hi > 0) {
+    const double decades = std::log10(hi / lo);
+    if (decades < 1) {
+      if (std::isnan(fixed_lo)) lo = std::pow(10.0, std::floor(std::log10(lo) + 1e-9));
+      if (std::isnan(fixed_hi)) hi = std::pow(10.0, std::ceil(std::log10(hi) - 1e-9));
+    } else {
+      if (std::isnan(fixed_lo)) lo /= std::pow(10.0, 0.05 * decades);
+      if (std::isnan(fixed_hi)) hi *= std::pow(10.0, 0.05 * decades);
+    }
+  }
+  if (hi <= lo) hi = lo * 10;
+  a->log = true;
+  a->lo = lo;
+  a->hi = hi;
+  if (!(a->lo > 0)) {
+    throw InputError("line plot '" + plot.title + "': log " + name + " axis needs " + name +
+                     "_min > 0, got " + Num(a->lo));
+  }
+}
+
 // Axis ranges from the data and the plot's fixed limits; throws InputError for mismatched series,
 // no finite point or an empty range.
 void ResolveAxes(const LinePlot& plot, Axis* x_axis, Axis* y_axis) {
-  Range xr, yr, ypos;
+  Range xr, yr, ypos, xpos;
   bool any_point = false;
   for (size_t k = 0; k < plot.series.size(); ++k) {
     const LineSeries& s = plot.series[k];
@@ -99,43 +133,25 @@ void ResolveAxes(const LinePlot& plot, Axis* x_axis, Axis* y_axis) {
       xr.Add(x);
       yr.Add(y);
       if (y > 0) ypos.Add(y);
+      if (x > 0) xpos.Add(x);
     }
   }
   if (!any_point) throw InputError("line plot '" + plot.title + "': no finite data point");
 
   Axis ax, ay;
-  ax.lo = std::isnan(plot.x_min) ? xr.lo : plot.x_min;
-  ax.hi = std::isnan(plot.x_max) ? xr.hi : plot.x_max;
-  if (std::isnan(plot.x_min) && std::isnan(plot.x_max) && ax.hi == ax.lo) {
-    ax.lo -= 0.5;
-    ax.hi += 0.5;
+  if (plot.log_x) {
+    LogRange(plot, xpos, plot.x_min, plot.x_max, &ax, "x");
+  } else {
+    ax.lo = std::isnan(plot.x_min) ? xr.lo : plot.x_min;
+    ax.hi = std::isnan(plot.x_max) ? xr.hi : plot.x_max;
+    if (std::isnan(plot.x_min) && std::isnan(plot.x_max) && ax.hi == ax.lo) {
+      ax.lo -= 0.5;
+      ax.hi += 0.5;
+    }
   }
   ay.log = plot.log_y;
   if (plot.log_y) {
-    if (!ypos.valid && (std::isnan(plot.y_min) || std::isnan(plot.y_max))) {
-      throw InputError("line plot '" + plot.title + "': log y axis but no positive y value");
-    }
-    // Auto: the positive data range, at most 6 decades below the maximum, 5 % padding in log
-    // space; widened to whole decades when it spans less than one.
-    double hi = std::isnan(plot.y_max) ? ypos.hi : plot.y_max;
-    double lo = std::isnan(plot.y_min) ? std::max(ypos.lo, hi * 1e-6) : plot.y_min;
-    if (lo > 0 && hi > 0) {
-      const double decades = std::log10(hi / lo);
-      if (decades < 1) {
-        if (std::isnan(plot.y_min)) lo = std::pow(10.0, std::floor(std::log10(lo) + 1e-9));
-        if (std::isnan(plot.y_max)) hi = std::pow(10.0, std::ceil(std::log10(hi) - 1e-9));
-      } else {
-        if (std::isnan(plot.y_min)) lo /= std::pow(10.0, 0.05 * decades);
-        if (std::isnan(plot.y_max)) hi *= std::pow(10.0, 0.05 * decades);
-      }
-    }
-    if (hi <= lo) hi = lo * 10;
-    ay.lo = lo;
-    ay.hi = hi;
-    if (!(ay.lo > 0)) {
-      throw InputError("line plot '" + plot.title + "': log y axis needs y_min > 0, got " +
-                       Num(ay.lo));
-    }
+    LogRange(plot, ypos, plot.y_min, plot.y_max, &ay, "y");
   } else {
     const double span = yr.hi - yr.lo;
     double lo = yr.lo, hi = yr.hi;
@@ -172,7 +188,9 @@ struct Layout {
 Layout MakeLayout(const LinePlot& plot, const Style& st, Axis* x_axis, Axis* y_axis) {
   Axis& ax = *x_axis;
   Axis& ay = *y_axis;
-  const std::vector<Tick> xticks = LinearTicks(ax.lo, ax.hi, std::max(4, plot.width / 160));
+  const std::vector<Tick> xticks = plot.log_x
+                                       ? LogTicks(ax.lo, ax.hi)
+                                       : LinearTicks(ax.lo, ax.hi, std::max(4, plot.width / 160));
   const std::vector<Tick> yticks = plot.log_y
                                        ? LogTicks(ay.lo, ay.hi)
                                        : LinearTicks(ay.lo, ay.hi, std::max(4, plot.height / 90));
@@ -269,6 +287,32 @@ void DrawSeries(
   for (const LineSeries& s : plot.series) {
     const int thickness =
         std::max(1, static_cast<int>(std::lround(s.thickness * std::max(1.0, st.f))));
+    if (s.points) {
+      for (size_t i = 0; i < s.y.size(); ++i) {
+        const double x = s.x.empty() ? static_cast<double>(i) : s.x[i];
+        if (!std::isfinite(x) || !std::isfinite(s.y[i]) || (ax_in.log && !(x > 0)) ||
+            (ay_in.log && !(s.y[i] > 0)))
+          continue;
+        const cv::Point2d at(ax_in.ToPixel(x), ay_in.ToPixel(s.y[i]));
+        const int radius = 3 * thickness;
+        cv::circle(inner,
+                   cv::Point(static_cast<int>(std::lround(at.x * kSubpixel)),
+                             static_cast<int>(std::lround(at.y * kSubpixel))),
+                   radius * static_cast<int>(kSubpixel),
+                   Bgr(s.color),
+                   -1,
+                   cv::LINE_AA,
+                   kShift);
+        if (i < s.point_labels.size() && !s.point_labels[i].empty())
+          Text(inner,
+               s.point_labels[i],
+               {at.x + radius + 6, at.y},
+               {st.marker(false), Bgr(s.color), 1},
+               HAlign::kLeft,
+               VAlign::kMiddle);
+      }
+      continue;
+    }
     for (const auto& line : SeriesPolylines(s, ax_in, ay_in)) {
       if (line.size() == 1) {
         cv::circle(inner,

@@ -1,5 +1,5 @@
 // Line plots (spectra, envelope spectra, waveforms, trends) rendered to PNG: series, vertical
-// markers with labels, linear or log y axis, legend.
+// markers with labels, scatter points with labels, linear or log axes, legend.
 #pragma once
 
 #include <limits>
@@ -15,6 +15,10 @@ struct LineSeries {
   Rgb color;
   std::string label;       // legend entry; empty = not in the legend
   double thickness = 1.5;  // pixels
+  // Scatter: a filled dot at each point instead of a line (a Pareto plot's one point per rung),
+  // each labelled with point_labels[i] when given (right of the dot).
+  bool points = false;
+  std::vector<std::string> point_labels;
 };
 
 // A vertical line at x with a small label (fault-family lines k*f_b, sidebands, band edges).
@@ -39,6 +43,7 @@ struct LinePlot {
   // log_y, the positive data range widened to whole decades when it spans less than one).
   double x_min = kAuto, x_max = kAuto, y_min = kAuto, y_max = kAuto;
   bool log_y = false;              // values <= 0 are not drawn on a log axis
+  bool log_x = false;              // the same for x (positive x data range, decade ticks)
   int width = 1600, height = 800;  // pixels, each in [200, 8000]
   bool legend = true;              // legend box in the top-right corner (only entries with a label)
 };

@@ -32,6 +32,48 @@ double HarrisJonesQmax(const Scene& scene) {
   return s.IsSolutionUsable() ? s.q_max_n : 0.0;
 }
 
+void MeasureSpallDrop(const Scene& s, const Recorder& rec, double from, LadderMetrics* m) {
+  const auto& t = rec.Find("/time")->data;
+  const auto& outer = rec.Find("/contact/roller_outer")->data;
+  const auto& orbit = rec.Find("/rollers/orbit_angle")->data;
+  const auto& spin = rec.Find("/rollers/spin")->data;
+  const auto& cage = rec.Find("/cage/omega")->data;
+  const int z = static_cast<int>(outer.size() / std::max<size_t>(1, t.size()));
+  const Defect& d = s.defects.front();
+  std::vector<bool> healthy(z, true);
+  for (const Defect& e : s.defects) healthy[e.roller] = false;
+  auto in_zone = [&](size_t i, int j) {  // within 40 degrees of the load line (-y)
+    const double psi = std::remainder(orbit[i * z + j] + 0.5 * kPi, 2 * kPi);
+    return std::abs(psi) < 40.0 * kPi / 180.0;
+  };
+  std::vector<double> loads;
+  for (size_t i = 0; i < t.size(); ++i)
+    for (int j = 0; t[i] >= from && j < z; ++j)
+      if (healthy[j] && in_zone(i, j)) loads.push_back(outer[i * z + j]);
+  if (loads.empty()) return;
+  std::nth_element(loads.begin(), loads.begin() + loads.size() / 2, loads.end());
+  const double threshold = 0.1 * loads[loads.size() / 2];
+  const double half_angle =
+      std::asin(std::min(1.0, 0.5 * d.width_m / (0.5 * s.geometry.bearing.element_diameter_m)));
+  double total = 0, geometric = 0;
+  int runs = 0, run = 0, samples = 0;
+  for (size_t i = 0; i < t.size(); ++i) {
+    const bool low = t[i] >= from && in_zone(i, d.roller) && outer[i * z + d.roller] < threshold;
+    if (low) {
+      ++run;
+      geometric += 2.0 * half_angle / std::max(1e-9, std::abs(spin[i * z + d.roller] - cage[i]));
+      ++samples;
+    } else if (run > 0) {
+      total += run, ++runs, run = 0;
+    }
+  }
+  if (runs == 0) return;
+  const double dt = t.size() > 1 ? t[1] - t[0] : 0.0;
+  m->spall_drops = runs;
+  m->spall_drop_s = total / runs * dt;
+  m->spall_drop_geometric_s = geometric / samples;
+}
+
 LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duration) {
   Scene s = scene;
   s.model.fidelity = rung.fidelity;
@@ -94,6 +136,7 @@ LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duratio
         dsp::SquaredEnvelopeSpectrum(x, fs, dsp::Band{500.0, 0.45 * fs}, eo);
     m.ses.assign(ses.level.begin() + (ses.level.empty() ? 0 : 1), ses.level.end());
   }
+  if (!s.defects.empty()) MeasureSpallDrop(s, rec, from, &m);
   m.harris_jones_load_n = HarrisJonesQmax(s);
   m.wall_s = sum.wall_seconds;
   m.simulated_s = sum.time;
@@ -157,8 +200,9 @@ LadderSummary RunFidelityLadder(const LadderOptions& options,
         os.precision(4);
         os << name << " / " << rung.Label() << ": " << m.wall_s << " s wall, f_b " << m.f_b_hz
            << " Hz, f_c " << m.f_c_hz << " Hz, slip " << 100 * m.cage_slip << " %, Q "
-           << m.roller_load_n << " N, rms " << m.rms << ", energy " << 100 * m.energy_balance_error
-           << " %";
+           << m.roller_load_n << " N, rms " << m.rms << ", spall drops " << m.spall_drops << " of "
+           << 1e3 * m.spall_drop_s << " ms (geometric " << 1e3 * m.spall_drop_geometric_s
+           << " ms), energy " << 100 * m.energy_balance_error << " %";
         progress(os.str());
       }
     }
@@ -178,6 +222,11 @@ LadderSummary RunFidelityLadder(const LadderOptions& options,
       s.rms = std::max(s.rms, RelativeError(m.rms, ref.rms));
       s.kurtosis = std::max(s.kurtosis, RelativeError(m.kurtosis, ref.kurtosis));
       s.ses_correlation = std::max(s.ses_correlation, SesCorrelationError(m.ses, ref.ses));
+      if (m.spall_drops > 0 && ref.spall_drops > 0)
+        s.spall_drop = std::max(s.spall_drop, RelativeError(m.spall_drop_s, ref.spall_drop_s));
+      if (m.spall_drops > 0)
+        s.spall_drop_vs_geometric = std::max(
+            s.spall_drop_vs_geometric, RelativeError(m.spall_drop_s, m.spall_drop_geometric_s));
       s.roller_load_vs_harris_jones = std::max(
           s.roller_load_vs_harris_jones, RelativeError(m.roller_load_n, m.harris_jones_load_n));
       s.max_energy_balance_error = std::max(s.max_energy_balance_error, m.energy_balance_error);
@@ -192,23 +241,26 @@ std::string LadderSummary::Table() const {
   std::ostringstream os;
   os.precision(3);
   os << "rung            wall s/sim s   f_b %   f_c %  slip pp  load %  rms %  kurt %  SES %  "
-        "load-HJ %  energy %\n";
+        "drop %  drop-geo %  load-HJ %  energy %\n";
   char line[256];
   for (const LadderRungSummary& r : rungs) {
-    std::snprintf(line,
-                  sizeof line,
-                  "%-15s %12.3g %7.3f %7.3f %8.3f %7.2f %6.1f %7.1f %6.1f %9.2f %9.3f\n",
-                  r.rung.Label().c_str(),
-                  r.wall_s_per_simulated_s,
-                  100 * r.f_b,
-                  100 * r.f_c,
-                  100 * r.cage_slip,
-                  100 * r.roller_load,
-                  100 * r.rms,
-                  100 * r.kurtosis,
-                  100 * r.ses_correlation,
-                  100 * r.roller_load_vs_harris_jones,
-                  100 * r.max_energy_balance_error);
+    std::snprintf(
+        line,
+        sizeof line,
+        "%-15s %12.3g %7.3f %7.3f %8.3f %7.2f %6.1f %7.1f %6.1f %7.1f %10.1f %9.2f %9.3f\n",
+        r.rung.Label().c_str(),
+        r.wall_s_per_simulated_s,
+        100 * r.f_b,
+        100 * r.f_c,
+        100 * r.cage_slip,
+        100 * r.roller_load,
+        100 * r.rms,
+        100 * r.kurtosis,
+        100 * r.ses_correlation,
+        100 * r.spall_drop,
+        100 * r.spall_drop_vs_geometric,
+        100 * r.roller_load_vs_harris_jones,
+        100 * r.max_energy_balance_error);
     os << line;
   }
   return os.str();

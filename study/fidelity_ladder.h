@@ -45,6 +45,13 @@ struct LadderMetrics {
   double harris_jones_load_n = 0;  // Q_max of the same scene
   double wall_s = 0, simulated_s = 0, energy_balance_error = 0;
   std::vector<double> ses;  // SES level of the vertical acceleration, bins 1.. (see above)
+  // Spall drop on the outer race (spalled scenes; 0 otherwise): mean duration of the runs of
+  // samples in which the first defective roller, inside the load zone (within 40 degrees of
+  // the load line), carries less than 10 % of the healthy rollers' median load there; and the
+  // geometric passage time 2 asin(w / 2r) / |w_roller - w_cage| (the contact line crossing the
+  // spall's chord at the simulated spin), averaged over the same samples.
+  double spall_drop_s = 0, spall_drop_geometric_s = 0;
+  int spall_drops = 0;  // how many runs were found
 };
 
 struct LadderRun {
@@ -60,6 +67,8 @@ struct LadderRungSummary {
   // difference of the slip ratio); roller_load_vs_harris_jones against the quasi-static load.
   double f_b = 0, f_c = 0, cage_slip = 0, roller_load = 0, rms = 0, kurtosis = 0;
   double ses_correlation = 0;  // 1 - correlation coefficient of the SES with the reference's
+  double spall_drop = 0;       // spall-drop duration against the reference's (spalled scenes)
+  double spall_drop_vs_geometric = 0;  // and against the geometric passage time
   double roller_load_vs_harris_jones = 0;
   double max_energy_balance_error = 0;
 };

@@ -224,6 +224,53 @@ TEST_F(PlotTest, LogAxisAndAutoRanges) {
   EXPECT_GT(CountColor(img, PaletteColor(0)), 1000);
 }
 
+// A scatter on log axes (the fidelity ladder's Pareto plot): points a decade apart in x and y
+// land equally far apart in pixels, each a filled dot; a log x axis without a positive x throws.
+TEST_F(PlotTest, ScatterOnLogAxesSpacesDecadesEqually) {
+  LinePlot plot;
+  plot.title = "Pareto";
+  plot.log_x = plot.log_y = true;
+  plot.legend = false;
+  plot.width = 1000;
+  plot.height = 600;
+  LineSeries s;
+  s.points = true;
+  s.color = PaletteColor(0);
+  s.x = {1.0, 10.0, 100.0};
+  s.y = {100.0, 10.0, 1.0};
+  s.point_labels = {"a", "b", "c"};
+  plot.series.push_back(s);
+  const cv::Mat img = cv::imdecode(RenderLinePlotPng(plot), cv::IMREAD_COLOR);
+  ASSERT_EQ(img.cols, 1000);
+  // Centroids of the blue dots, split into three clusters by column.
+  std::vector<double> sx(3, 0), sy(3, 0), n(3, 0);
+  double x_lo = img.cols, x_hi = 0;
+  std::vector<cv::Point> blue;
+  for (int r = 0; r < img.rows; ++r)
+    for (int c = 0; c < img.cols; ++c) {
+      const cv::Vec3b p = img.at<cv::Vec3b>(r, c);
+      const Rgb k = PaletteColor(0);
+      if (std::abs(p[2] - k.r) < 30 && std::abs(p[1] - k.g) < 30 && std::abs(p[0] - k.b) < 30) {
+        blue.push_back({c, r});
+        x_lo = std::min<double>(x_lo, c), x_hi = std::max<double>(x_hi, c);
+      }
+    }
+  ASSERT_GT(blue.size(), 30u);
+  for (const cv::Point& q : blue) {
+    const int k = std::min(2, static_cast<int>(3 * (q.x - x_lo) / (x_hi - x_lo + 1)));
+    sx[k] += q.x, sy[k] += q.y, n[k] += 1;
+  }
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_GT(n[k], 10) << k;
+    sx[k] /= n[k], sy[k] /= n[k];
+  }
+  EXPECT_NEAR(sx[1] - sx[0], sx[2] - sx[1], 3.0);
+  EXPECT_NEAR(sy[1] - sy[0], sy[2] - sy[1], 3.0);
+  EXPECT_GT(sy[1], sy[0]);  // y falls as x rises: lower on the image
+  plot.series[0].x = {-1.0, 0.0, 0.0};
+  EXPECT_THROW(RenderLinePlotPng(plot), InputError);
+}
+
 TEST_F(PlotTest, LinePlotBadInputsThrowInputError) {
   LinePlot plot = EnvelopeSpectrumPlot();
   EXPECT_THROW(WriteLinePlot(Path("no/such/dir/x.png"), plot), InputError);
