@@ -23,6 +23,7 @@
 #include "core/constants.h"
 #include "core/error.h"
 #include "core/hdf5.h"
+#include "sim/bearing/fidelity_choice.h"
 #include "sim/bearing/simulation.h"
 #include "study/case_post.h"
 
@@ -263,7 +264,7 @@ CaseLabels MakeLabels(const sim::Scene& scene) {
     l.f_b_hz = Round12(f.f_b_hz);
     l.f_c_hz = Round12(f.cage_hz);
   }
-  l.fidelity = sim::FidelityName(scene.model.fidelity);
+  l.fidelity = sim::FidelityName(sim::ChooseFidelity(scene).fidelity);  // "auto" resolved
   l.duration_s = scene.run.duration_s;
   l.output_rate_hz = scene.run.output_rate_hz;
   return l;

@@ -7,7 +7,8 @@
 // energy are made by every rung; the stress field of every part only by the full FE, which is
 // then chosen whatever the tolerance). The rungs' errors are the bounds `spall bench
 // ladder` measured against the finest model (MeasuredRungErrors); a rung is chosen when each of
-// its bounds is within the tolerance, cheapest first: lumped, hybrid, fe.
+// its bounds is within the tolerance, cheapest first: lumped, hybrid, fe. "auto" is the scene
+// default.
 #pragma once
 
 #include <string>
@@ -35,7 +36,15 @@ struct FidelityChoice {
   std::string reason;  // one line: which rung and why
 };
 
-// The fidelity the scene runs at: its model.fidelity, or for "auto" the choice above.
+// Why the full FE cannot run the scene ("" when it can): the lubricant traction law, a spall
+// shorter than the roller, or a spall too small for the contact mesh.
+std::string FullFeUnavailable(const Scene& scene);
+// For model.fidelity = "auto": why no model can run the scene ("" when one can): the stress
+// field, which only the full FE records, asked for where the full FE is unavailable.
+std::string AutoFidelityConflict(const Scene& scene);
+
+// The fidelity the scene runs at: its model.fidelity, or for "auto" the choice above (never the
+// full FE where FullFeUnavailable). Throws InputError where AutoFidelityConflict.
 FidelityChoice ChooseFidelity(const Scene& scene);
 
 // The scene with model.fidelity set to ChooseFidelity's choice (effective_toml unchanged: the

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/input_file.h"
+#include "sim/bearing/fidelity_choice.h"
 #include "sim/bearing/scene_limits.h"
 
 namespace spallkit::sim {
@@ -455,7 +456,7 @@ void ReadModel(Section s,
                const std::vector<Defect>& defects,
                const SceneFriction& friction,
                SceneModel* model) {
-  model->fidelity = Choice(s, "fidelity", Fidelity::kFe, kFidelityNames);
+  model->fidelity = Choice(s, "fidelity", Fidelity::kAuto, kFidelityNames);
   model->adapter = Choice(s, "adapter", AdapterModel::kElastic, kAdapterModelNames);
   model->race_contact = Choice(s, "race_contact", RaceContact::kSmooth, kRaceContactNames);
   // The FE section is 2-D: a spall runs through its whole thickness.
@@ -725,7 +726,15 @@ Scene ParseScene(const std::string& toml_text,
   ReadRun(top.Table("run"), &scene.run, &scene.outputs);
   ReadSolver(top.Table("solver"), &scene.solver);
   top.RejectUnknown();
-  if (const auto v = FindSceneLimitViolation(scene)) {
+  // "auto" must find a model that runs the scene; the limits are those of the model it picks.
+  if (scene.model.fidelity == Fidelity::kAuto) {
+    const std::string conflict = AutoFidelityConflict(scene);
+    if (!conflict.empty()) {
+      const toml::node* node = root.at_path("run.outputs").node();
+      throw InputError(Located(Where(scene.source, node), "run.outputs", conflict));
+    }
+  }
+  if (const auto v = FindSceneLimitViolation(WithChosenFidelity(scene))) {
     const toml::node* node = root.at_path(v->key).node();
     throw InputError(Located(Where(scene.source, node), v->key, v->reason));
   }

@@ -168,7 +168,9 @@ bool ParseOutput(const std::string& name, Output* output);
 
 // [model]: keys fidelity, adapter, race_contact.
 struct SceneModel {
-  Fidelity fidelity = Fidelity::kFe;
+  // "auto" (the default): the cheapest rung whose measured errors meet [run.tolerance]
+  // (fidelity_choice.h), resolved when the model is built.
+  Fidelity fidelity = Fidelity::kAuto;
   AdapterModel adapter = AdapterModel::kElastic;
   RaceContact race_contact = RaceContact::kSmooth;
 };

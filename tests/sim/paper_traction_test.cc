@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "sim/bearing/fidelity_choice.h"
 #include "sim/bearing/roller_sliding.h"
 #include "sim/bearing/scene.h"
 #include "sim/bearing/simulation.h"
@@ -105,7 +106,13 @@ TEST(EhlTractionTest, SceneSelectsItForTheRigidRollerModelsOnly) {
     }
     return std::string();
   };
-  EXPECT_NE(error_of("[friction]\nmodel = \"ehl\"\n").find("model.fidelity"), std::string::npos);
+  EXPECT_NE(
+      error_of("[model]\nfidelity = \"fe\"\n[friction]\nmodel = \"ehl\"\n").find("model.fidelity"),
+      std::string::npos);
+  // "auto" (the default) takes a rigid-roller model for it.
+  EXPECT_EQ(error_of("[friction]\nmodel = \"ehl\"\n"), "");
+  EXPECT_NE(ChooseFidelity(ParseScene("[friction]\nmodel = \"ehl\"\n", "a.toml", {})).fidelity,
+            Fidelity::kFe);
   EXPECT_NE(error_of("[friction]\nmodel = \"oil\"\n").find("friction.model"), std::string::npos);
   EXPECT_NE(error_of("[model]\nfidelity = \"lumped\"\n[friction]\nmodel = \"ehl\"\nehl_limit = 0\n")
                 .find("friction.ehl_limit"),

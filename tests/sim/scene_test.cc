@@ -161,7 +161,8 @@ TEST(Scene, BadScenesGiveOneLineErrorsNamingFileLineAndKey) {
   ExpectOneLineError(ErrorOf("[run]\noutputs = [\"movie\"]\n"), "run.outputs: unknown output");
   ExpectOneLineError(ErrorOf("[bearing]\ncatalog = \"X1\"\n"), "bearing.catalog");
   ExpectOneLineError(ErrorOf("[mesh\n"), "bad.toml:1:");
-  ExpectOneLineError(ErrorOf("[mesh]\nsize_mm = 2.0\n"), "mesh.contact_size_mm: too coarse");
+  ExpectOneLineError(ErrorOf("[model]\nfidelity = \"fe\"\n[mesh]\nsize_mm = 2.0\n"),
+                     "mesh.contact_size_mm: too coarse");
   ExpectOneLineError(ErrorOf("[solver]\nmax_energy_error_percent = -1\n"),
                      "bad.toml:2: solver.max_energy_error_percent: must be in [0, 100]");
 }
@@ -181,8 +182,13 @@ TEST(Scene, SpallLengthDefaultsToThroughLengthAndPartialNeedsTheHybridModel) {
   const Scene h = ParseScene(
       "[model]\nfidelity = \"hybrid\"\n[[defects]]\nroller = 1\nlength_mm = 4.5\n", "h.toml");
   EXPECT_DOUBLE_EQ(h.defects[0].length_m, 4.5e-3);
-  ExpectOneLineError(ErrorOf("[[defects]]\nroller = 1\nlength_mm = 4.5\n"),
-                     "model.fidelity: defects.0.length_mm is shorter than bearing.thickness_mm");
+  ExpectOneLineError(
+      ErrorOf("[model]\nfidelity = \"fe\"\n[[defects]]\nroller = 1\nlength_mm = 4.5\n"),
+      "model.fidelity: defects.0.length_mm is shorter than bearing.thickness_mm");
+  // "auto", the default, runs it on a rigid-roller model.
+  EXPECT_DOUBLE_EQ(
+      ParseScene("[[defects]]\nroller = 1\nlength_mm = 4.5\n", "a.toml").defects[0].length_m,
+      4.5e-3);
   ExpectOneLineError(
       ErrorOf("[model]\nfidelity = \"hybrid\"\n[[defects]]\nroller = 1\nlength_mm = 9.5\n"),
       "bad.toml:5: defects.0.length_mm: must be in [0, 9]");
@@ -228,7 +234,7 @@ TEST(Scene, ModelChoicesAreEnumsNamedAsInTheSceneFile) {
   EXPECT_EQ(again.model.adapter, AdapterModel::kRigid);
   EXPECT_EQ(again.model.race_contact, RaceContact::kFaceted);
   EXPECT_EQ(ParseScene("", "d.toml").model.adapter, AdapterModel::kElastic);
-  EXPECT_EQ(ParseScene("", "d.toml").model.fidelity, Fidelity::kFe);
+  EXPECT_EQ(ParseScene("", "d.toml").model.fidelity, Fidelity::kAuto);
 
   for (Fidelity f : {Fidelity::kFe, Fidelity::kHybrid, Fidelity::kLumped, Fidelity::kAuto}) {
     Fidelity back = Fidelity::kFe;
