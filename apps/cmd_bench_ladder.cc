@@ -1,4 +1,4 @@
-// spall bench ladder [SCENE...] [--quick] [--json] [--plot pareto.png] [--duration-s T]
+// spall bench ladder [SCENE...] [--quick] [--trends] [--json] [--plot pareto.png] [--duration-s T]
 // [--set key=value]...:
 // runs the scenes at every rung of the fidelity ladder on one thread and prints each rung's wall
 // time per simulated second and its errors against the finest rung run (study/
@@ -28,7 +28,7 @@ namespace {
 struct Opts {
   std::vector<std::string> scenes;
   std::vector<std::string> sets;
-  bool quick = false, json = false;
+  bool quick = false, json = false, trends = false;
   std::string plot;
   double duration_s = 0.15;
   std::string scenes_dir = "datasets/scenes";
@@ -57,7 +57,21 @@ int Run(const Opts& o) {
                                    "friction.mu_dynamic=0.005"};
   sets.insert(sets.end(), o.sets.begin(), o.sets.end());
   const std::string dir = o.scenes_dir + "/";
-  if (o.scenes.empty()) {
+  if (o.trends && !o.scenes.empty())
+    throw spallkit::InputError(
+        "bench ladder: --trends runs the paper's width, depth and roller "
+        "scenes; give no SCENE with it");
+  std::vector<LadderTrend> trends;
+  if (o.trends) {
+    // The paper's three trends (docs/PAPER.md): width and count up, depth flat, at the scenes'
+    // speeds, on the rungs a user would take for a study.
+    trends = {{"width", {"width-0.46", "width-1.38", "width-2.27"}, LadderTrend::Kind::kIncreasing},
+              {"depth", {"depth-0.59", "depth-0.885", "depth-1.18"}, LadderTrend::Kind::kFlat},
+              {"rollers", {"rollers-1", "rollers-2", "rollers-3"}, LadderTrend::Kind::kIncreasing}};
+    for (const LadderTrend& t : trends)
+      for (const std::string& name : t.scenes)
+        lo.scenes.emplace_back(name, LoadScene(dir + name + ".toml", sets));
+  } else if (o.scenes.empty()) {
     lo.scenes.emplace_back("paper", LoadScene(dir + "paper-verification.toml", sets));
     Scene healthy = LoadScene(dir + "paper-verification.toml", sets);
     healthy.defects.clear();
@@ -66,8 +80,9 @@ int Run(const Opts& o) {
   } else {
     for (const std::string& path : o.scenes) lo.scenes.emplace_back(path, LoadScene(path, sets));
   }
-  lo.rungs = {{Fidelity::kLumped, 0.0}, {Fidelity::kHybrid, 2e-3}, {Fidelity::kHybrid, 1e-3}};
-  if (!o.quick) lo.rungs.push_back({Fidelity::kHybrid, 0.5e-3});
+  lo.rungs = {{Fidelity::kLumped, 0.0}, {Fidelity::kHybrid, 2e-3}};
+  if (!o.trends) lo.rungs.push_back({Fidelity::kHybrid, 1e-3});
+  if (!o.quick && !o.trends) lo.rungs.push_back({Fidelity::kHybrid, 0.5e-3});
   const LadderSummary s = RunFidelityLadder(
       lo, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
   if (!o.plot.empty()) {
@@ -105,6 +120,7 @@ int Run(const Opts& o) {
     p.x_max = x_hi * 4;
     spallkit::plot::WriteLinePlot(o.plot, p);
   }
+  const std::vector<LadderTrendResult> trend_results = EvaluateTrends(s, trends);
   if (o.json) {
     nlohmann::json rungs = nlohmann::json::array();
     for (const LadderRungSummary& r : s.rungs)
@@ -127,12 +143,20 @@ int Run(const Opts& o) {
                        {"max_energy_balance_error", r.max_energy_balance_error}});
     nlohmann::json j = {
         {"reference", s.rungs.back().rung.Label()}, {"duration_s", o.duration_s}, {"rungs", rungs}};
+    if (o.trends) {
+      nlohmann::json t = nlohmann::json::array();
+      for (const LadderTrendResult& r : trend_results)
+        t.push_back(
+            {{"trend", r.name}, {"rung", r.rung.Label()}, {"rms", r.rms}, {"holds", r.holds}});
+      j["trends"] = t;
+    }
     std::printf("%s\n", j.dump(2).c_str());
   } else {
     std::printf("reference: %s, %g s per run, one thread\n%s",
                 s.rungs.back().rung.Label().c_str(),
                 o.duration_s,
                 s.Table().c_str());
+    if (o.trends) std::printf("%s", TrendTable(trend_results).c_str());
   }
   return 0;
 }
@@ -142,6 +166,10 @@ spallkit::apps::Register reg(
       auto o = std::make_shared<Opts>();
       sub.add_option("scenes", o->scenes, "Scene files (default: paper, healthy, rollers-3)");
       sub.add_flag("--quick", o->quick, "Lumped and hybrid 2 / 1 mm only");
+      sub.add_flag("--trends",
+                   o->trends,
+                   "The paper's width, depth and roller-count trends of the vibration RMS on "
+                   "lumped and hybrid 2 mm (datasets/scenes/width-*, depth-*, rollers-*)");
       sub.add_flag("--json", o->json, "Print JSON");
       sub.add_option("--plot", o->plot, "Write the error-against-time plot (PNG)");
       sub.add_option("--duration-s", o->duration_s, "Simulated time per run")

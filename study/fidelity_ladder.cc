@@ -266,4 +266,47 @@ std::string LadderSummary::Table() const {
   return os.str();
 }
 
+std::vector<LadderTrendResult> EvaluateTrends(const LadderSummary& summary,
+                                              const std::vector<LadderTrend>& trends,
+                                              double flat_ratio) {
+  std::vector<LadderTrendResult> out;
+  for (const LadderTrend& trend : trends)
+    for (const LadderRungSummary& rung : summary.rungs) {
+      LadderTrendResult r;
+      r.name = trend.name;
+      r.rung = rung.rung;
+      for (const std::string& scene : trend.scenes) {
+        const auto run =
+            std::find_if(summary.runs.begin(), summary.runs.end(), [&](const LadderRun& x) {
+              return x.scene == scene && x.rung.fidelity == rung.rung.fidelity &&
+                     x.rung.mesh_m == rung.rung.mesh_m;
+            });
+        if (run == summary.runs.end())
+          throw InputError("bench ladder: trend '" + trend.name + "' names scene '" + scene +
+                           "', which the ladder did not run");
+        r.rms.push_back(run->metrics.rms);
+      }
+      if (trend.kind == LadderTrend::Kind::kIncreasing) {
+        r.holds = true;
+        for (size_t k = 1; k < r.rms.size(); ++k) r.holds = r.holds && r.rms[k] > r.rms[k - 1];
+      } else {
+        const auto [lo, hi] = std::minmax_element(r.rms.begin(), r.rms.end());
+        r.holds = !r.rms.empty() && *lo > 0 && *hi / *lo <= flat_ratio;
+      }
+      out.push_back(r);
+    }
+  return out;
+}
+
+std::string TrendTable(const std::vector<LadderTrendResult>& results) {
+  std::ostringstream os;
+  os.precision(4);
+  for (const LadderTrendResult& r : results) {
+    os << r.name << " @ " << r.rung.Label() << ": RMS";
+    for (double v : r.rms) os << " " << v;
+    os << " m/s^2 -> " << (r.holds ? "holds" : "does not hold") << "\n";
+  }
+  return os.str();
+}
+
 }  // namespace spallkit::study

@@ -84,4 +84,29 @@ struct LadderSummary {
 LadderSummary RunFidelityLadder(const LadderOptions& options,
                                 const std::function<void(const std::string&)>& progress = {});
 
+// A trend of the paper's study checked on a ladder's runs: the vertical acceleration RMS over
+// `scenes` (ladder scene names, in the order of the varied quantity) must grow (kIncreasing:
+// every step up) or stay flat (kFlat: largest over smallest RMS at most flat_ratio).
+struct LadderTrend {
+  enum class Kind { kIncreasing, kFlat };
+  std::string name;  // "width", "depth", "rollers"
+  std::vector<std::string> scenes;
+  Kind kind = Kind::kIncreasing;
+};
+
+struct LadderTrendResult {
+  std::string name;
+  LadderRung rung;
+  std::vector<double> rms;  // per scene of the trend
+  bool holds = false;
+};
+
+// The trends at every rung of `summary` (flat_ratio: kFlat's bound). Throws InputError when a
+// trend names a scene the ladder did not run.
+std::vector<LadderTrendResult> EvaluateTrends(const LadderSummary& summary,
+                                              const std::vector<LadderTrend>& trends,
+                                              double flat_ratio = 1.5);
+// One line per trend and rung: the RMS values and whether the trend holds.
+std::string TrendTable(const std::vector<LadderTrendResult>& results);
+
 }  // namespace spallkit::study

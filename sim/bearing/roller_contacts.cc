@@ -120,10 +120,10 @@ RollerContacts::RollerContacts(const Scene& scene,
     pocket_cos_.push_back(std::cos(phi));
     pocket_sin_.push_back(std::sin(phi));
     intact_directions_.emplace_back(intact_profiles_.back());
-    // Seated (HybridOptions::seat_rollers): touching the outer raceway along the pocket line.
+    // Seated (model.start): touching the outer raceway along the pocket line.
     profiles_.push_back(p);
     directions_.emplace_back(p);
-    const double centre_radius = options_.seat_rollers
+    const double centre_radius = scene_.model.start == StartPose::kSeated
                                      ? SeatOnOuterRace(j, phi, housing.outer_raceway_radius_m)
                                      : housing.pitch_radius_m;
     Body b;
@@ -131,7 +131,7 @@ RollerContacts::RollerContacts(const Scene& scene,
     b.y = centre_radius * std::sin(phi) + cy;
     rollers_.push_back(b);
   }
-  if (options_.seat_rollers) shaft_.y = -SeatedShaftDrop();
+  if (scene_.model.start == StartPose::kSeated) shaft_.y = -SeatedShaftDrop();
 
   // Cage webs: the annulus minus the Z pockets (polar-grid quadrature).
   {

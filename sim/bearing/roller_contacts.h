@@ -66,12 +66,6 @@ struct HybridOptions {
   // Half-width L of the kernel that spreads an outer-race contact over raceway nodes; 0: the
   // larger of 1 mm and 2 raceway node spacings (raceway_kernel.h; hybrid model only).
   double spread_half_width_m = 0.0;
-  // Start seated: each roller touches the outer race (its profile's extreme point, the rim
-  // edges where its spall faces the race) and the inner ring is lowered along the load until
-  // it touches the first roller, so the ramped load builds on closed contacts. Centred (false):
-  // rollers on the pitch circle, ring centred; the load then first closes the clearance and
-  // the ring strikes the rollers (a start-up impact that rings the housing for milliseconds).
-  bool seat_rollers = true;
 
   bool IsValid(std::string* error) const;
 };
@@ -164,7 +158,7 @@ class RollerContacts {
 
  private:
   enum class Counter { kOuterRace, kShaft, kCage };
-  // HybridOptions::seat_rollers: how far the shaft is lowered (m, along the load) to touch the
+  // model.start = "seated": how far the shaft is lowered (m, along the load) to touch the
   // first roller, the rollers already on the outer raceway.
   double SeatedShaftDrop() const;
   // Roller j's distance from the bearing centre (m) at which its profile along angle phi

@@ -79,6 +79,8 @@ constexpr NamedValue<AdapterModel> kAdapterModelNames[] = {{AdapterModel::kElast
 constexpr NamedValue<RaceContact> kRaceContactNames[] = {{RaceContact::kFaceted, "faceted"},
                                                          {RaceContact::kCurved, "curved"},
                                                          {RaceContact::kSmooth, "smooth"}};
+constexpr NamedValue<StartPose> kStartPoseNames[] = {{StartPose::kSeated, "seated"},
+                                                     {StartPose::kCentred, "centred"}};
 constexpr NamedValue<Axis> kAxisNames[] = {{Axis::kX, "x"}, {Axis::kY, "y"}};
 constexpr NamedValue<Output> kOutputNames[] = {{Output::kContactForces, "contact_forces"},
                                                {Output::kAcceleration, "acceleration"},
@@ -459,6 +461,7 @@ void ReadModel(Section s,
   model->fidelity = Choice(s, "fidelity", Fidelity::kAuto, kFidelityNames);
   model->adapter = Choice(s, "adapter", AdapterModel::kElastic, kAdapterModelNames);
   model->race_contact = Choice(s, "race_contact", RaceContact::kSmooth, kRaceContactNames);
+  model->start = Choice(s, "start", StartPose::kSeated, kStartPoseNames);
   // The FE section is 2-D: a spall runs through its whole thickness.
   for (std::size_t i = 0; model->fidelity == Fidelity::kFe && i < defects.size(); ++i)
     if (defects[i].length_m < g.thickness_m * (1 - 1e-12))
@@ -592,6 +595,10 @@ const char* RaceContactName(RaceContact race_contact) {
 }
 bool ParseRaceContact(const std::string& name, RaceContact* race_contact) {
   return ParseName(kRaceContactNames, name, race_contact);
+}
+const char* StartPoseName(StartPose start) { return NameOf(kStartPoseNames, start); }
+bool ParseStartPose(const std::string& name, StartPose* start) {
+  return ParseName(kStartPoseNames, name, start);
 }
 
 const char* AxisName(Axis axis) { return NameOf(kAxisNames, axis); }

@@ -147,6 +147,11 @@ enum class AdapterModel { kElastic, kRigid };
 // balanced on the 0.25 mm mesh), kCurved (circular arcs, "Curved surfaces": no facet bump as a
 // roller turns; creates energy on rims finer than 0.35 mm) or kFaceted (node to chord).
 enum class RaceContact { kFaceted, kCurved, kSmooth };
+// How the rigid-roller models (hybrid, lumped) place their parts at t = 0. kSeated: each roller
+// on the outer raceway, the inner ring lowered along the load onto the first roller, so the
+// ramped load builds on closed contacts; kCentred: rollers on the pitch circle, ring centred (the
+// load first closes the clearance and the ring strikes the rollers). docs/BEARING_MODEL.md.
+enum class StartPose { kSeated, kCentred };
 
 // Scene-file names ("fe", "hybrid", "lumped", "auto"; "elastic", "rigid"; "faceted", "curved",
 // "smooth"), and back: the Parse functions return false for any other name.
@@ -156,6 +161,8 @@ const char* AdapterModelName(AdapterModel adapter);
 bool ParseAdapterModel(const std::string& name, AdapterModel* adapter);
 const char* RaceContactName(RaceContact race_contact);
 bool ParseRaceContact(const std::string& name, RaceContact* race_contact);
+const char* StartPoseName(StartPose start);  // "seated", "centred"
+bool ParseStartPose(const std::string& name, StartPose* start);
 
 // What a run records ([run] outputs): roller contact forces, sensor accelerations, cage speed and
 // slip, roller spin and orbit, energy terms, and kField: the von Mises stress of every element of
@@ -166,13 +173,14 @@ enum class Output { kContactForces, kAcceleration, kCage, kRollers, kEnergy, kFi
 const char* OutputName(Output output);
 bool ParseOutput(const std::string& name, Output* output);
 
-// [model]: keys fidelity, adapter, race_contact.
+// [model]: keys fidelity, adapter, race_contact, start.
 struct SceneModel {
   // "auto" (the default): the cheapest rung whose measured errors meet [run.tolerance]
   // (fidelity_choice.h), resolved when the model is built.
   Fidelity fidelity = Fidelity::kAuto;
   AdapterModel adapter = AdapterModel::kElastic;
   RaceContact race_contact = RaceContact::kSmooth;
+  StartPose start = StartPose::kSeated;
 };
 
 struct SceneSolver {

@@ -185,7 +185,7 @@ TEST(LumpedModelTest, RollersRollAndTheCageFollowsPureRolling) {
   EXPECT_NEAR(rel[0] / rel[1], 1.0, 0.01);
 }
 
-// The rigid-roller models start seated (HybridOptions::seat_rollers): the rollers on the outer
+// The rigid-roller models start seated (model.start = "seated", the default): the rollers on the outer
 // raceway, the inner ring on the first roller, so the ramped load builds on closed contacts.
 // Whatever faces the races at the start (the spall towards the outer race at the bottom, towards
 // the inner ring, or a spall shorter than the roller), no roller load in the first millisecond
@@ -205,10 +205,9 @@ TEST(LumpedModelTest, StartsSeatedWithoutAStartUpImpact) {
                             "run.output_rate_hz=200000",
                             "run.outputs=[\"contact_forces\"]"})
         all.push_back(s);
+      all.push_back(seated ? "model.start=seated" : "model.start=centred");
       const Scene scene = LumpedScene(all);
-      SimulationOptions options;
-      options.model.hybrid.seat_rollers = seated;
-      Simulation sim(scene, options);
+      Simulation sim(scene, {});
       ASSERT_TRUE(sim.Run().completed);
       const auto& t = sim.recorder().Find("/time")->data;
       const auto& q = sim.recorder().Find("/contact/roller_outer")->data;

@@ -68,5 +68,36 @@ TEST(FidelityLadderTest, LumpedSesDiffersFromTheHybridsButStaysCorrelated) {
   EXPECT_EQ(s.rungs[1].ses_correlation, 0.0);
 }
 
+// The trend check on a ladder's runs: a width trend that rises at every step holds, one that
+// dips does not; a depth spread within the flat ratio holds, a larger one does not; a trend
+// naming a scene the ladder did not run is refused.
+TEST(FidelityLadderTest, TrendsHoldOnlyWhenEveryStepGoesTheRightWay) {
+  LadderSummary s;
+  const LadderRung lumped{Fidelity::kLumped, 0.0};
+  s.rungs.push_back({lumped});
+  auto run = [&](const std::string& scene, double rms) {
+    LadderRun r;
+    r.scene = scene;
+    r.rung = lumped;
+    r.metrics.rms = rms;
+    s.runs.push_back(r);
+  };
+  run("w1", 100), run("w2", 150), run("w3", 140);  // dips at the last step
+  run("d1", 100), run("d2", 120), run("d3", 110);  // 1.2x spread
+  run("n1", 100), run("n2", 200), run("n3", 400);
+  const std::vector<LadderTrend> trends = {
+      {"width", {"w1", "w2", "w3"}, LadderTrend::Kind::kIncreasing},
+      {"depth", {"d1", "d2", "d3"}, LadderTrend::Kind::kFlat},
+      {"rollers", {"n1", "n2", "n3"}, LadderTrend::Kind::kIncreasing}};
+  const std::vector<LadderTrendResult> r = EvaluateTrends(s, trends, 1.5);
+  ASSERT_EQ(r.size(), 3u);
+  EXPECT_FALSE(r[0].holds);
+  EXPECT_TRUE(r[1].holds);
+  EXPECT_TRUE(r[2].holds);
+  EXPECT_FALSE(EvaluateTrends(s, {trends[1]}, 1.1)[0].holds);
+  std::printf("%s", TrendTable(r).c_str());
+  EXPECT_THROW(EvaluateTrends(s, {{"x", {"w1", "nope"}, LadderTrend::Kind::kFlat}}), InputError);
+}
+
 }  // namespace
 }  // namespace spallkit::study
