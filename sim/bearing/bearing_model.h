@@ -110,6 +110,9 @@ class BearingModel {
   virtual BodyMotion RollerMotion(int j) const = 0;
   virtual BodyMotion CageMotion() const = 0;
   virtual BodyMotion InnerRingMotion() const = 0;  // velocity at n-1/2
+  // The outer raceway's centre: its nodes' mean displacement (FE and hybrid), the rigid ring's
+  // centre (lumped); velocity likewise at n-1/2; omega 0.
+  virtual BodyMotion OuterRingMotion() const = 0;
 
   const std::vector<SensorChannel>& sensor_channels() const { return channels_; }
   // Velocity of channel c along its direction at t^(n-1/2) (m/s).

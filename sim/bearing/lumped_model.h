@@ -101,6 +101,9 @@ class LumpedBearingModel : public BearingModel {
   BodyMotion RollerMotion(int j) const override;
   BodyMotion CageMotion() const override;
   BodyMotion InnerRingMotion() const override;
+  BodyMotion OuterRingMotion() const override {
+    return {race_.x_, race_.y_, race_.vx_, race_.vy_, 0.0};
+  }
   double SensorVelocity(int channel) const override;
   const BearingMesh& bearing_mesh() const override { return housing_; }
   int num_elements() const override { return 0; }

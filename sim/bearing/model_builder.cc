@@ -299,6 +299,19 @@ BodyMotion FeBearingModel::InnerRingMotion() const {
   return {s.x, s.y, s.vx, s.vy, speed_(solver_->time())};
 }
 
+BodyMotion FeBearingModel::OuterRingMotion() const {
+  const fe::NodalState& st = solver_->state();
+  BodyMotion m;
+  const std::vector<int>& nodes = mesh_.mesh.curves.at("outer_ring.raceway").nodes;
+  for (int n : nodes) {
+    m.cx += st.x[n] - st.x0[n], m.cy += st.y[n] - st.y0[n];
+    m.vx += st.vx[n], m.vy += st.vy[n];
+  }
+  const double k = nodes.empty() ? 0.0 : 1.0 / static_cast<double>(nodes.size());
+  m.cx *= k, m.cy *= k, m.vx *= k, m.vy *= k;
+  return m;
+}
+
 bool FeBearingModel::KeepsArcsOnItsSpall(int roller) const {
   bool spalled = false;
   for (const Defect& d : scene_.defects) spalled = spalled || d.roller == roller;

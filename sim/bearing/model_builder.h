@@ -88,6 +88,7 @@ class FeBearingModel : public BearingModel {
   const contact::ContactPair& inner_pair(int j) const { return *inner_pairs_[j]; }
   BodyMotion CageMotion() const override;
   BodyMotion InnerRingMotion() const override;  // the shaft rigid body (velocity at n-1/2)
+  BodyMotion OuterRingMotion() const override;
 
   // Parts, element/node counts, contact pairs, constraints and the mesh quality (rollers merged
   // into one line): a few lines for logs.
