@@ -137,6 +137,8 @@ int Run(const Opts& o) {
                          {"rms", r.rms},
                          {"kurtosis", r.kurtosis},
                          {"ses_correlation", r.ses_correlation},
+                         {"signal_f_b", r.signal_f_b},  // NaN (null): not measured
+                         {"signal_f_c", r.signal_f_c},
                          {"spall_drop", r.spall_drop},
                          {"spall_drop_vs_geometric", r.spall_drop_vs_geometric},
                          {"roller_load_vs_harris_jones", r.roller_load_vs_harris_jones}}},

@@ -7,6 +7,8 @@
 #include "core/bearing.h"
 #include "core/constants.h"
 #include "core/error.h"
+#include "core/record.h"
+#include "dsp/diagnose.h"
 #include "dsp/envelope.h"
 #include "sim/bearing/simulation.h"
 #include "sim/quasistatic/harris_jones.h"
@@ -135,6 +137,18 @@ LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duratio
     const dsp::EnvelopeSpectrum ses =
         dsp::SquaredEnvelopeSpectrum(x, fs, dsp::Band{500.0, 0.45 * fs}, eo);
     m.ses.assign(ses.level.begin() + (ses.level.empty() ? 0 : 1), ses.level.end());
+    // The rates from the signal, as `spall diagnose` measures them (too short a record, or no
+    // roller comb: not measured).
+    try {
+      Record record;
+      record.samples = x;
+      record.sample_rate_hz = fs;
+      const dsp::Diagnosis d =
+          dsp::Diagnose(record, s.geometry.bearing, s.operation.inner_ring_speed_rad_s / (2 * kPi));
+      if (d.measured_f_b_hz) m.signal_f_b_hz = *d.measured_f_b_hz;
+      if (d.measured_f_c_hz) m.signal_f_c_hz = *d.measured_f_c_hz;
+    } catch (const InputError&) {
+    }
   }
   if (!s.defects.empty()) MeasureSpallDrop(s, rec, from, &m);
   m.harris_jones_load_n = HarrisJonesQmax(s);
@@ -222,6 +236,13 @@ LadderSummary RunFidelityLadder(const LadderOptions& options,
       s.rms = std::max(s.rms, RelativeError(m.rms, ref.rms));
       s.kurtosis = std::max(s.kurtosis, RelativeError(m.kurtosis, ref.kurtosis));
       s.ses_correlation = std::max(s.ses_correlation, SesCorrelationError(m.ses, ref.ses));
+      auto signal_error = [](double value, double reference, double* error) {
+        if (std::isnan(value) || std::isnan(reference)) return;
+        const double e = RelativeError(value, reference);
+        *error = std::isnan(*error) ? e : std::max(*error, e);
+      };
+      signal_error(m.signal_f_b_hz, ref.signal_f_b_hz, &s.signal_f_b);
+      signal_error(m.signal_f_c_hz, ref.signal_f_c_hz, &s.signal_f_c);
       if (m.spall_drops > 0 && ref.spall_drops > 0)
         s.spall_drop = std::max(s.spall_drop, RelativeError(m.spall_drop_s, ref.spall_drop_s));
       if (m.spall_drops > 0)
@@ -241,27 +262,35 @@ std::string LadderSummary::Table() const {
   std::ostringstream os;
   os.precision(3);
   os << "rung            wall s/sim s   f_b %   f_c %  slip pp  load %  rms %  kurt %  SES %  "
-        "drop %  drop-geo %  load-HJ %  energy %\n";
+        "drop %  drop-geo %  load-HJ %  energy %  sig f_b %  sig f_c %\n";
   char line[256];
   for (const LadderRungSummary& r : rungs) {
-    std::snprintf(
-        line,
-        sizeof line,
-        "%-15s %12.3g %7.3f %7.3f %8.3f %7.2f %6.1f %7.1f %6.1f %7.1f %10.1f %9.2f %9.3f\n",
-        r.rung.Label().c_str(),
-        r.wall_s_per_simulated_s,
-        100 * r.f_b,
-        100 * r.f_c,
-        100 * r.cage_slip,
-        100 * r.roller_load,
-        100 * r.rms,
-        100 * r.kurtosis,
-        100 * r.ses_correlation,
-        100 * r.spall_drop,
-        100 * r.spall_drop_vs_geometric,
-        100 * r.roller_load_vs_harris_jones,
-        100 * r.max_energy_balance_error);
+    std::snprintf(line,
+                  sizeof line,
+                  "%-15s %12.3g %7.3f %7.3f %8.3f %7.2f %6.1f %7.1f %6.1f %7.1f %10.1f %9.2f %9.3f",
+                  r.rung.Label().c_str(),
+                  r.wall_s_per_simulated_s,
+                  100 * r.f_b,
+                  100 * r.f_c,
+                  100 * r.cage_slip,
+                  100 * r.roller_load,
+                  100 * r.rms,
+                  100 * r.kurtosis,
+                  100 * r.ses_correlation,
+                  100 * r.spall_drop,
+                  100 * r.spall_drop_vs_geometric,
+                  100 * r.roller_load_vs_harris_jones,
+                  100 * r.max_energy_balance_error);
     os << line;
+    for (double e : {r.signal_f_b, r.signal_f_c}) {
+      if (std::isnan(e)) {
+        std::snprintf(line, sizeof line, " %10s", "-");
+      } else {
+        std::snprintf(line, sizeof line, " %10.3f", 100 * e);
+      }
+      os << line;
+    }
+    os << "\n";
   }
   return os.str();
 }

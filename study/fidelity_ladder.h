@@ -10,10 +10,13 @@
 // spectrum (SES; band 500 Hz to 0.45 of the output rate, cyclic frequencies up to five times the
 // kinematic f_b), the energy balance. The SES error of a rung is 1 - the correlation coefficient
 // of its SES with the reference's over those cyclic frequencies: 0 when the fault comb has the
-// same shape, whatever the sensor's gain.
+// same shape, whatever the sensor's gain. f_b and f_c from the signal: `spall diagnose`'s
+// measured rates of that record (dsp/diagnose.h), NaN where the diagnosis measures none (a record
+// of a few cage turns, as the default 0.15 s, is too short: run the ladder with --duration-s 1).
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -24,6 +27,8 @@ namespace spallkit::study {
 
 using sim::Fidelity;
 using sim::Scene;
+
+inline constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
 
 struct LadderRung {
   Fidelity fidelity = Fidelity::kLumped;
@@ -42,7 +47,8 @@ struct LadderOptions {
 
 struct LadderMetrics {
   double f_b_hz = 0, f_c_hz = 0, cage_slip = 0, roller_load_n = 0, rms = 0, kurtosis = 0;
-  double harris_jones_load_n = 0;  // Q_max of the same scene
+  double signal_f_b_hz = kNotMeasured, signal_f_c_hz = kNotMeasured;  // diagnosed (see above)
+  double harris_jones_load_n = 0;                                     // Q_max of the same scene
   double wall_s = 0, simulated_s = 0, energy_balance_error = 0;
   std::vector<double> ses;  // SES level of the vertical acceleration, bins 1.. (see above)
   // Spall drop on the outer race (spalled scenes; 0 otherwise): mean duration of the runs of
@@ -66,6 +72,9 @@ struct LadderRungSummary {
   // Largest relative error over the scenes against the finest rung (cage_slip: absolute
   // difference of the slip ratio); roller_load_vs_harris_jones against the quasi-static load.
   double f_b = 0, f_c = 0, cage_slip = 0, roller_load = 0, rms = 0, kurtosis = 0;
+  // Diagnosed f_b and f_c against the reference's diagnosed ones, over the scenes where both were
+  // measured; NaN where none was.
+  double signal_f_b = kNotMeasured, signal_f_c = kNotMeasured;
   double ses_correlation = 0;  // 1 - correlation coefficient of the SES with the reference's
   double spall_drop = 0;       // spall-drop duration against the reference's (spalled scenes)
   double spall_drop_vs_geometric = 0;  // and against the geometric passage time
