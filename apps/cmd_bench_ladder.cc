@@ -7,8 +7,6 @@
 // 0.005) with the lubricant traction law, as the main job, on which every rung rolls the spall
 // through (docs/BEARING_MODEL.md, "Spall trapping"). Rungs: lumped, hybrid 2 / 1 mm (--quick),
 // plus hybrid 0.5 mm otherwise.
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -48,32 +46,21 @@ int Run(const Opts& o) {
   paths.Check();
   LadderOptions lo;
   lo.duration_s = o.duration_s;
-  // The main job's friction: the paper's coefficients with the lubricant traction law (the
-  // scene is loaded as hybrid because that law is for the rigid-roller rungs; each rung sets its
-  // own fidelity).
-  std::vector<std::string> sets = {"model.fidelity=hybrid",
-                                   "friction.model=ehl",
-                                   "friction.mu_static=0.01",
-                                   "friction.mu_dynamic=0.005"};
+  std::vector<std::string> sets = LadderSceneSets();
   sets.insert(sets.end(), o.sets.begin(), o.sets.end());
   const std::string dir = o.scenes_dir + "/";
   if (o.trends && !o.scenes.empty())
     throw spallkit::InputError(
         "bench ladder: --trends runs the paper's width, depth and roller "
         "scenes; give no SCENE with it");
-  std::vector<LadderTrend> trends;
+  const std::vector<LadderTrend> trends = o.trends ? PaperTrends() : std::vector<LadderTrend>{};
   if (o.trends) {
-    // The paper's three trends (docs/PAPER.md): width and count up, depth flat, at the scenes'
-    // speeds, on the rungs a user would take for a study.
-    trends = {{"width", {"width-0.46", "width-1.38", "width-2.27"}, LadderTrend::Kind::kIncreasing},
-              {"depth", {"depth-0.59", "depth-0.885", "depth-1.18"}, LadderTrend::Kind::kFlat},
-              {"rollers", {"rollers-1", "rollers-2", "rollers-3"}, LadderTrend::Kind::kIncreasing}};
     for (const LadderTrend& t : trends)
       for (const std::string& name : t.scenes)
         lo.scenes.emplace_back(name, LoadScene(dir + name + ".toml", sets));
   } else if (o.scenes.empty()) {
     lo.scenes.emplace_back("paper", LoadScene(dir + "paper-verification.toml", sets));
-    Scene healthy = LoadScene(dir + "paper-verification.toml", sets);
+    Scene healthy = lo.scenes.back().second;
     healthy.defects.clear();
     lo.scenes.emplace_back("healthy", healthy);
     lo.scenes.emplace_back("rollers-3", LoadScene(dir + "rollers-3.toml", sets));
@@ -85,41 +72,7 @@ int Run(const Opts& o) {
   if (!o.quick && !o.trends) lo.rungs.push_back({Fidelity::kHybrid, 0.5e-3});
   const LadderSummary s = RunFidelityLadder(
       lo, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
-  if (!o.plot.empty()) {
-    // Pareto view: the largest kinematic error (f_b, f_c, cage slip) against the cost, log axes,
-    // one labelled point per rung; the reference rung (no error of its own) is a labelled line.
-    spallkit::plot::LinePlot p;
-    p.title = "Fidelity ladder: error against run time";
-    p.x_label = "wall time per simulated second (s, one thread)";
-    p.y_label = "largest of f_b, f_c, cage slip error (%)";
-    p.log_x = p.log_y = true;
-    p.legend = false;
-    spallkit::plot::LineSeries points;
-    points.points = true;
-    points.thickness = 2.5;
-    for (const LadderRungSummary& r : s.rungs) {
-      const double e = 100 * std::max({r.f_b, r.f_c, r.cage_slip});
-      if (e > 0) {
-        points.x.push_back(r.wall_s_per_simulated_s);
-        points.y.push_back(e);
-        points.point_labels.push_back(r.rung.Label());
-      } else {
-        spallkit::plot::Marker m;
-        m.x = r.wall_s_per_simulated_s;
-        m.label = "reference: " + r.rung.Label();
-        p.markers.push_back(m);
-      }
-    }
-    p.series.push_back(points);
-    // Room for the reference line and the labels right of the points.
-    double x_lo = s.rungs.front().wall_s_per_simulated_s, x_hi = x_lo;
-    for (const LadderRungSummary& r : s.rungs)
-      x_lo = std::min(x_lo, r.wall_s_per_simulated_s),
-      x_hi = std::max(x_hi, r.wall_s_per_simulated_s);
-    p.x_min = x_lo / 2;
-    p.x_max = x_hi * 4;
-    spallkit::plot::WriteLinePlot(o.plot, p);
-  }
+  if (!o.plot.empty()) spallkit::plot::WriteLinePlot(o.plot, LadderParetoPlot(s));
   const std::vector<LadderTrendResult> trend_results = EvaluateTrends(s, trends);
   if (o.json) {
     nlohmann::json rungs = nlohmann::json::array();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "core/bearing.h"
@@ -10,6 +11,7 @@
 #include "core/record.h"
 #include "dsp/diagnose.h"
 #include "dsp/envelope.h"
+#include "dsp/statistics.h"
 #include "sim/bearing/simulation.h"
 #include "sim/quasistatic/harris_jones.h"
 
@@ -97,8 +99,7 @@ LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duratio
   const std::vector<double>& accel = sim.recorder().Acceleration(0);
   LadderMetrics m;
   const double from = 2.0 * std::max(s.operation.ramp_s, s.operation.load_ramp_s);
-  std::vector<double> peaks;
-  double sum_a = 0, sum_a2 = 0;
+  std::vector<double> peaks, x;  // x: the vertical acceleration after the ramps
   int n = 0;
   for (size_t i = 0; i < t.size(); ++i) {
     if (t[i] < from) continue;
@@ -108,7 +109,7 @@ LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duratio
     for (int j = 0; j < z; ++j)
       if (healthy[j]) peak = std::max(peak, outer[i * z + j]);
     peaks.push_back(peak);
-    if (i < accel.size()) sum_a += accel[i], sum_a2 += accel[i] * accel[i];
+    if (i < accel.size()) x.push_back(accel[i]);
     ++n;
   }
   if (n == 0) throw InputError("bench ladder: duration_s leaves no samples after the ramps");
@@ -117,21 +118,15 @@ LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duratio
   m.cage_slip = sum.cage_slip_mean;
   std::sort(peaks.begin(), peaks.end());
   m.roller_load_n = peaks[static_cast<size_t>(0.99 * (peaks.size() - 1))];
-  const double mean = sum_a / n;
-  m.rms = std::sqrt(std::max(0.0, sum_a2 / n - mean * mean));
-  double m4 = 0;
-  for (size_t i = 0; i < t.size() && i < accel.size(); ++i)
-    if (t[i] >= from) m4 += std::pow(accel[i] - mean, 4);
-  m.kurtosis = m.rms > 0 ? m4 / n / std::pow(m.rms, 4) : 0.0;
   {
+    // RMS about the mean (the sensor's offset is not vibration), kurtosis.
+    const dsp::TimeStatistics ts = dsp::ComputeTimeStatistics(x);
+    m.rms = std::sqrt(std::max(0.0, ts.rms * ts.rms - ts.mean * ts.mean));
+    m.kurtosis = ts.kurtosis;
     // SES of the vertical acceleration after the ramps (module comment).
-    std::vector<double> x;
-    for (size_t i = 0; i < t.size() && i < accel.size(); ++i)
-      if (t[i] >= from) x.push_back(accel[i]);
     const double fs = s.run.output_rate_hz;
-    const double f_b =
-        ComputeFrequencies(s.geometry.bearing, s.operation.inner_ring_speed_rad_s / (2 * kPi))
-            .f_b_hz;
+    const double shaft_hz = s.operation.inner_ring_speed_rad_s / (2 * kPi);
+    const double f_b = ComputeFrequencies(s.geometry.bearing, shaft_hz).f_b_hz;
     dsp::EnvelopeOptions eo;
     eo.max_alpha_hz = 5.0 * f_b;
     const dsp::EnvelopeSpectrum ses =
@@ -141,10 +136,9 @@ LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duratio
     // roller comb: not measured).
     try {
       Record record;
-      record.samples = x;
+      record.samples = std::move(x);
       record.sample_rate_hz = fs;
-      const dsp::Diagnosis d =
-          dsp::Diagnose(record, s.geometry.bearing, s.operation.inner_ring_speed_rad_s / (2 * kPi));
+      const dsp::Diagnosis d = dsp::Diagnose(record, s.geometry.bearing, shaft_hz);
       if (d.measured_f_b_hz) m.signal_f_b_hz = *d.measured_f_b_hz;
       if (d.measured_f_c_hz) m.signal_f_c_hz = *d.measured_f_c_hz;
     } catch (const InputError&) {
@@ -336,6 +330,51 @@ std::string TrendTable(const std::vector<LadderTrendResult>& results) {
     os << " m/s^2 -> " << (r.holds ? "holds" : "does not hold") << "\n";
   }
   return os.str();
+}
+
+std::vector<std::string> LadderSceneSets() {
+  return {"model.fidelity=hybrid",
+          "friction.model=ehl",
+          "friction.mu_static=0.01",
+          "friction.mu_dynamic=0.005"};
+}
+
+std::vector<LadderTrend> PaperTrends() {
+  return {{"width", {"width-0.46", "width-1.38", "width-2.27"}, LadderTrend::Kind::kIncreasing},
+          {"depth", {"depth-0.59", "depth-0.885", "depth-1.18"}, LadderTrend::Kind::kFlat},
+          {"rollers", {"rollers-1", "rollers-2", "rollers-3"}, LadderTrend::Kind::kIncreasing}};
+}
+
+plot::LinePlot LadderParetoPlot(const LadderSummary& summary) {
+  plot::LinePlot p;
+  p.title = "Fidelity ladder: error against run time";
+  p.x_label = "wall time per simulated second (s, one thread)";
+  p.y_label = "largest of f_b, f_c, cage slip error (%)";
+  p.log_x = p.log_y = true;
+  p.legend = false;
+  plot::LineSeries points;
+  points.points = true;
+  points.thickness = 2.5;
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = 0.0;
+  for (const LadderRungSummary& r : summary.rungs) {
+    const double x = r.wall_s_per_simulated_s, e = 100 * std::max({r.f_b, r.f_c, r.cage_slip});
+    x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
+    if (e > 0) {
+      points.x.push_back(x);
+      points.y.push_back(e);
+      points.point_labels.push_back(r.rung.Label());
+    } else {
+      plot::Marker m;
+      m.x = x;
+      m.label = "reference: " + r.rung.Label();
+      p.markers.push_back(m);
+    }
+  }
+  p.series.push_back(points);
+  // Room for the reference line and the labels right of the points.
+  p.x_min = x_lo / 2;
+  p.x_max = x_hi * 4;
+  return p;
 }
 
 }  // namespace spallkit::study

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "plot/line_plot.h"
 #include "sim/bearing/bearing_model.h"
 #include "sim/bearing/scene.h"
 
@@ -117,5 +118,17 @@ std::vector<LadderTrendResult> EvaluateTrends(const LadderSummary& summary,
                                               double flat_ratio = 1.5);
 // One line per trend and rung: the RMS values and whether the trend holds.
 std::string TrendTable(const std::vector<LadderTrendResult>& results);
+
+// The --set overrides every ladder scene is loaded with: the main job's friction, the paper's
+// coefficients with the lubricant traction law (loaded as hybrid, the law being for the
+// rigid-roller rungs; each rung then sets its own fidelity).
+std::vector<std::string> LadderSceneSets();
+// The paper's three trends (docs/PAPER.md): width and count up, depth flat; scene names are the
+// files of datasets/scenes (width-*, depth-*, rollers-*), without ".toml".
+std::vector<LadderTrend> PaperTrends();
+// The Pareto view: the largest kinematic error (f_b, f_c, cage slip) against the wall time per
+// simulated second, log axes, one labelled point per rung; the reference rung (no error of its
+// own) is a labelled vertical line.
+plot::LinePlot LadderParetoPlot(const LadderSummary& summary);
 
 }  // namespace spallkit::study

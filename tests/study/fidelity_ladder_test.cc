@@ -136,18 +136,11 @@ TEST(FidelityLadderTest, TrendsHoldOnlyWhenEveryStepGoesTheRightWay) {
 // lumped rung, 1.03x against 2.9x on the hybrid).
 std::vector<LadderTrendResult> PapersTrends(const LadderRung& rung) {
   const std::string dir = std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/";
-  const std::vector<std::string> sets = {"model.fidelity=hybrid",
-                                         "friction.model=ehl",
-                                         "friction.mu_static=0.01",
-                                         "friction.mu_dynamic=0.005"};
-  const std::vector<LadderTrend> trends = {
-      {"width", {"width-0.46", "width-1.38", "width-2.27"}, LadderTrend::Kind::kIncreasing},
-      {"depth", {"depth-0.59", "depth-0.885", "depth-1.18"}, LadderTrend::Kind::kFlat},
-      {"rollers", {"rollers-1", "rollers-2", "rollers-3"}, LadderTrend::Kind::kIncreasing}};
+  const std::vector<LadderTrend> trends = PaperTrends();
   LadderOptions o;
   for (const LadderTrend& t : trends)
     for (const std::string& name : t.scenes)
-      o.scenes.emplace_back(name, sim::LoadScene(dir + name + ".toml", sets));
+      o.scenes.emplace_back(name, sim::LoadScene(dir + name + ".toml", LadderSceneSets()));
   // The ladder needs two rungs; the second (lumped, cheap) is only the errors' reference.
   o.rungs = {rung, {Fidelity::kLumped, 0.0}};
   o.duration_s = 0.15;
