@@ -27,9 +27,9 @@ std::string FullFeUnavailable(const Scene& scene) {
   for (std::size_t i = 0; i < scene.defects.size(); ++i) {
     const Defect& d = scene.defects[i];
     const std::string name = "defects." + std::to_string(i);
-    if (d.length_m < scene.geometry.thickness_m * (1 - 1e-12))
+    if (d.ShorterThan(scene.geometry.thickness_m))
       return name + " is shorter than the roller (the FE section is 2-D)";
-    if (d.width_m < 1.5 * scene.mesh.contact_size_m || d.depth_m < scene.mesh.contact_size_m)
+    if (d.UnresolvedBy(scene.mesh.contact_size_m))
       return name +
              " is smaller than the contact mesh allows (width >= 1.5 and depth >= 1 "
              "element of mesh.contact_size_mm)";

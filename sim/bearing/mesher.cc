@@ -172,7 +172,7 @@ fe::Mesh MakeRoller(const std::string& part,
 
   int k_r = -1, k_l = -1, j_star = -1;
   if (defect) {
-    if (defect->width_m < 1.5 * contact_size || defect->depth_m < contact_size)
+    if (defect->UnresolvedBy(contact_size))
       throw InputError(defect_key +
                        ": spall narrower than 1.5 elements or shallower than one "
                        "(refine mesh.contact_size_mm)");

@@ -464,7 +464,7 @@ void ReadModel(Section s,
   model->start = Choice(s, "start", StartPose::kSeated, kStartPoseNames);
   // The FE section is 2-D: a spall runs through its whole thickness.
   for (std::size_t i = 0; model->fidelity == Fidelity::kFe && i < defects.size(); ++i)
-    if (defects[i].length_m < g.thickness_m * (1 - 1e-12))
+    if (defects[i].ShorterThan(g.thickness_m))
       s.Fail("fidelity",
              "defects." + std::to_string(i) +
                  ".length_mm is shorter than bearing.thickness_mm (a partial-length spall); "
@@ -492,7 +492,7 @@ void ReadMesh(Section s,
   // The hybrid model's rollers are not meshed: their spalls are exact profiles.
   for (std::size_t i = 0; model.fidelity == Fidelity::kFe && i < defects.size(); ++i) {
     const auto& d = defects[i];
-    if (d.width_m < 1.5 * mesh->contact_size_m || d.depth_m < mesh->contact_size_m)
+    if (d.UnresolvedBy(mesh->contact_size_m))
       s.Fail("contact_size_mm",
              "too coarse for defects." + std::to_string(i) + " (" +
                  FormatNumber("%.6g", d.width_m / kMm) + " x " +

@@ -43,6 +43,13 @@ struct Defect {
   // through-length spall as in the paper's 2-D model; shorter spalls leave an intact part of the
   // roller in contact (the hybrid model carries the two parts side by side).
   double length_m = 0.0;
+
+  // What the full FE cannot mesh: a spall shorter than the roller (its section is 2-D), and a
+  // spall its contact mesh does not resolve (width < 1.5, depth < 1 element of contact_size_m).
+  bool ShorterThan(double thickness_m) const { return length_m < thickness_m * (1 - 1e-12); }
+  bool UnresolvedBy(double contact_size_m) const {
+    return width_m < 1.5 * contact_size_m || depth_m < contact_size_m;
+  }
 };
 
 // Bearing section geometry. Raceway diameters are NOMINAL (zero clearance); the mesher opens
