@@ -689,7 +689,10 @@ void ExplainAndConclude(const DetectionContext& ctx,
   d->explained_lines = std::move(joint.explained);
   d->roller_integer_ratio_mismatch = joint.roller_integer_ratio_mismatch;
   d->races = joint.races;
+  d->roller_cage = joint.roller_cage;
   if (d->races.tested && !d->races.separable) d->warnings.push_back(d->races.Describe());
+  if (d->roller_cage.tested && !d->roller_cage.separable)
+    d->warnings.push_back(d->roller_cage.Describe());
   ApplyRecordLengthRule(duration_s, options.min_periods, d);
   MeasureDetectedRates(shaft_hz, dopt, d);
   d->verdict = FirstDetectedVerdict(d->faults);
@@ -881,6 +884,11 @@ std::string Diagnosis::ToJson(int indent) const {
        std::isfinite(roller_integer_ratio_mismatch) ? ordered_json(roller_integer_ratio_mismatch)
                                                     : ordered_json(nullptr)},
       {"lines", explained},
+      {"roller_cage",
+       roller_cage.tested ? ordered_json{{"separable", roller_cage.separable},
+                                         {"offset_hz", roller_cage.offset_hz},
+                                         {"offset_bins", roller_cage.offset_bins}}
+                          : ordered_json(nullptr)},
       {"races",
        races.tested ? ordered_json{{"separable", races.separable},
                                    {"outer_evidence", races.outer_evidence},

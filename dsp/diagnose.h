@@ -124,6 +124,9 @@ struct Diagnosis {
   std::vector<ExplainedLine> explained_lines;
   // Rolling-element comb: f_b / f_sb relative distance to the nearest integer (NaN: not tested).
   double roller_integer_ratio_mismatch = 0.0;
+  // Rolling element against cage comb (dsp/explain.h); when both were detected and the record
+  // cannot resolve them, warnings[] says so.
+  RollerCageSeparation roller_cage;
   // Outer against inner race on the harmonics only one of them predicts (dsp/explain.h); when
   // both were detected and cannot be told apart, warnings[] says so.
   RaceSeparation races;

@@ -22,6 +22,8 @@ bool ExplanationOptions::IsValid(std::string* error) const {
   if (sideband_orders < 0 || sideband_orders > 5) return fail("sideband orders must be in 0..5");
   if (!(integer_ratio_tolerance >= 0.0 && integer_ratio_tolerance < 0.5))
     return fail("integer ratio tolerance must be in [0, 0.5)");
+  if (!(roller_cage_resolution_bins >= 0.0 && roller_cage_resolution_bins <= 100.0))
+    return fail("roller/cage resolution bins must be in [0, 100]");
   return true;
 }
 
@@ -316,6 +318,18 @@ RaceSeparation SeparateRaces(const FamilyDetection& outer,
   return r;
 }
 
+std::string RollerCageSeparation::Describe() const {
+  char buf[320];
+  std::snprintf(buf,
+                sizeof buf,
+                "rolling element and cage comb not separable: the bearing's f_b lies %.3g Hz "
+                "(%.2g SES bins) from the nearest cage harmonic, too close for this record's "
+                "resolution to tell a roller comb from a cage comb; ordered by harmonic evidence",
+                offset_hz,
+                offset_bins);
+  return buf;
+}
+
 std::string RaceSeparation::Describe() const {
   char buf[256];
   std::snprintf(buf,
@@ -361,8 +375,10 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
     if (f.component == FaultComponent::kRollingElement && cage_hz > 0.0)
       forest_floor_hz = RollerForestFloorHz(f.fundamental_hz, cage_hz, explanation.sideband_orders);
   double cage_measured_hz = 0.0;
+  bool cage_detected = false;
   for (size_t i = 0; i < families.size(); ++i) {
     if (families[i].component != FaultComponent::kCage || !detections[i].detected) continue;
+    cage_detected = true;
     double num = 0.0, den = 0.0;
     int used = 0;
     for (const LineEvidence& e : detections[i].lines)
@@ -375,6 +391,15 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
   for (size_t i = 0; i < families.size(); ++i) {
     if (families[i].component != FaultComponent::kRollingElement || !detections[i].detected)
       continue;
+    if (cage_detected && cage_hz > 0.0) {
+      // Can the record tell this bearing's roller comb from a cage comb at all?
+      const double f_b = families[i].fundamental_hz;
+      RollerCageSeparation& sep = out.roller_cage;
+      sep.tested = true;
+      sep.offset_hz = std::abs(f_b - std::max(1.0, std::round(f_b / cage_hz)) * cage_hz);
+      sep.offset_bins = sep.offset_hz / spectrum.resolution_hz;
+      sep.separable = sep.offset_bins >= explanation.roller_cage_resolution_bins;
+    }
     const FamilyRates r = MeasureRates(detections[i], families[i], cage_hz, shaft_hz);
     const double fsb = cage_measured_hz > 0.0 ? cage_measured_hz
                        : r.sideband_measured  ? r.sideband_hz
@@ -388,6 +413,7 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
     const double kinematic_ratio = cage_hz > 0.0 ? families[i].fundamental_hz / cage_hz
                                                  : std::numeric_limits<double>::infinity();
     out.roller_is_cage_comb =
+        out.roller_cage.separable &&
         std::abs(out.roller_integer_ratio_mismatch) <= explanation.integer_ratio_tolerance &&
         std::abs(ratio - n) < std::abs(ratio - kinematic_ratio);
   }
@@ -407,8 +433,8 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
     using C = FaultComponent;
     const bool rc = a.component == C::kRollingElement && b.component == C::kCage;
     const bool cr = a.component == C::kCage && b.component == C::kRollingElement;
-    if (rc) return !out.roller_is_cage_comb;
-    if (cr) return out.roller_is_cage_comb;
+    if (rc && out.roller_cage.separable) return !out.roller_is_cage_comb;
+    if (cr && out.roller_cage.separable) return out.roller_is_cage_comb;
     const bool oi = a.component == C::kOuterRace && b.component == C::kInnerRace;
     const bool io = a.component == C::kInnerRace && b.component == C::kOuterRace;
     if ((oi || io) && out.races.separable && out.races.outer_evidence != out.races.inner_evidence)

@@ -18,8 +18,10 @@
 // lines, unless its rate is an integer multiple of its own sideband spacing (f_b / f_sb within
 // integer_ratio_tolerance of an integer): then the "roller forest" is just a dense cage comb
 // (f_b / f_c = 2 (1 + d_m / d) is never an integer for the catalogue bearings: 13.85 N205EM, 11.83
-// 6205, 10.45 6203) and the cage explains it. Other pairs are ordered by harmonic evidence (mean
-// -ln p of the family's own harmonics, dsp/detection.h), which the lattice coincidences feed least.
+// 6205, 10.45 6203) and the cage explains it; a record too short to resolve the bearing's f_b
+// from the nearest cage harmonic cannot take that test (RollerCageSeparation). Other pairs, and
+// those two then, are ordered by harmonic evidence (mean -ln p of the family's own harmonics,
+// dsp/detection.h), which the lattice coincidences feed least.
 #pragma once
 
 #include <string>
@@ -42,6 +44,9 @@ struct ExplanationOptions {
   int sideband_orders = 2;
   // |f_b / (n f_sb) - 1| below this (n the nearest integer): the roller comb is a cage comb.
   double integer_ratio_tolerance = 0.005;
+  // The integer-ratio test is asked only when the record resolves the bearing's f_b from the
+  // nearest cage harmonic n f_c by at least this many SES bins (RollerCageSeparation).
+  double roller_cage_resolution_bins = 2.0;
 
   bool IsValid(std::string* error) const;
 };
@@ -135,13 +140,32 @@ RaceSeparation SeparateRaces(const FamilyDetection& outer,
                              const DetectionOptions& options,
                              const ExplanationOptions& explanation = {});
 
+// Rolling element against cage comb. A cage comb (an impulse train at f_c) holds a "roller comb"
+// at n f_c with +/- f_c "sidebands", n the integer nearest the bearing's f_b / f_c, so the two
+// are told apart by how far the measured f_b lies from n times the measured cage rate (the
+// integer-ratio test, ExplanationOptions::integer_ratio_tolerance). That needs the record to
+// resolve the bearing's own offset |f_b - n f_c| (N205EM: 0.15 f_c, 1.25 Hz at 1200 rpm; 6205:
+// 0.17 f_c): below roller_cage_resolution_bins SES bins the roller forest's lines around the low
+// cage orders (BSF +/- m f_c, 0.08 f_c from 7 f_c on an N205EM) pull the measured cage rate by
+// up to a bin (a simulated roller spall on a 1 s record: 0.7-0.9 % low, the ratio lands on 14),
+// and the test decides on its own measurement error. Then the two are ordered by harmonic
+// evidence, like the other pairs, and the report says they could not be separated.
+struct RollerCageSeparation {
+  bool tested = false;           // both the rolling element and the cage were detected on their own
+  double offset_hz = 0.0;        // |f_b - n f_c| at the searched speed (kinematic ratio)
+  double offset_bins = 0.0;      // offset_hz over the SES resolution 1 / T
+  bool separable = true;         // offset_bins >= roller_cage_resolution_bins
+  std::string Describe() const;  // one line for a warning
+};
+
 struct JointExplanation {
   // Detected families in explanation order, then the others by p-value.
   std::vector<FamilyDetection> ranked;
   std::vector<ExplainedLine> explained;  // every claimed line, in claiming order
   // f_b / f_sb - nearest integer, relative; NaN when not tested (no measured sideband spacing).
   double roller_integer_ratio_mismatch = 0.0;
-  bool roller_is_cage_comb = false;
+  bool roller_is_cage_comb = false;  // only decided when roller_cage.separable
+  RollerCageSeparation roller_cage;
   RaceSeparation races;  // tested when both races were detected on their own
 };
 

@@ -17,6 +17,10 @@
 
 #include "core/constants.h"
 #include "core/hdf5.h"
+#include "dsp/diagnose.h"
+#include "sim/bearing/record_adapter.h"
+#include "sim/bearing/scene.h"
+#include "sim/bearing/simulation.h"
 #include "tests/apps/run_spall.h"
 
 namespace {
@@ -85,6 +89,38 @@ TEST(HybridDiagnoseTest, DiagnoseFindsTheRollerSpallAtThePapersSpeed) {
   EXPECT_NEAR(fc, fc_sim, 0.25 * df);
   std::remove(h5_path.c_str());
   std::remove(csv.c_str());
+}
+
+// The lumped model's 1 s record of the paper scene with the traction law (the issue's "1 s in
+// about 1 s" rung; 8 cage turns at 1200 rpm) is the roller spall wherever the record starts. Its
+// f_b lies 1.3 SES bins from 14 f_c, so the integer-ratio test cannot tell its roller comb from
+// a cage comb (dsp/explain.h, RollerCageSeparation): the report says so and orders the two by
+// harmonic evidence. (Deciding on the ratio, a record trimmed by 5 ms was called healthy: the
+// cage comb's rate came out 0.7-0.9 % low, the ratio landed on 14, and the cage comb, too short
+// to be claimed, explained the roller lines away.) About 3 s.
+TEST(LumpedDiagnoseTest, OneSecondRecordIsTheRollerSpallWhereverItStarts) {
+  namespace sim = spallkit::sim;
+  namespace dsp = spallkit::dsp;
+  const sim::Scene scene =
+      sim::LoadScene(std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml",
+                     {"model.fidelity=lumped", "run.duration_s=1", "friction.model=ehl"});
+  sim::Simulation simulation(scene, {});
+  simulation.Run();
+  const spallkit::Record whole = sim::ToRecord(simulation, sim::AccelerationAxis::kVertical);
+  const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
+  for (double trim_s : {0.0, 0.002, 0.005, 0.01, 0.02, 0.05}) {
+    spallkit::Record r = whole;
+    r.samples.erase(r.samples.begin(),
+                    r.samples.begin() + static_cast<long>(trim_s * r.sample_rate_hz));
+    const dsp::Diagnosis d = dsp::Diagnose(r, scene.geometry.bearing, shaft_hz);
+    SCOPED_TRACE("trimmed by " + std::to_string(trim_s) + " s\n" + d.BriefReport());
+    EXPECT_EQ(d.verdict, dsp::Verdict::kRollingElement);
+    ASSERT_TRUE(d.measured_f_b_hz.has_value());
+    EXPECT_NEAR(*d.measured_f_b_hz / d.kinematics.f_b_hz, 1.0, 0.01);
+    ASSERT_TRUE(d.roller_cage.tested);
+    EXPECT_FALSE(d.roller_cage.separable);
+    EXPECT_NEAR(d.roller_cage.offset_bins, 1.28, 0.1);
+  }
 }
 
 }  // namespace
