@@ -700,12 +700,12 @@ void ExplainAndConclude(const DetectionContext& ctx,
 
 // DiagnoseOptions::confirm_outer_race: the outer-race family is claimed only when its comb is
 // also significant on the cepstrum-pre-whitened record (varying compliance is deterministic).
-// First on the chosen band (one transform of the record and one band SES), and only when it
-// fails there on a whole second analysis of the pre-whitened record (any candidate band).
+// First on the chosen band (the record's spectrum whitened in place and one band SES), and only
+// when it fails there on a whole second analysis of the pre-whitened record (any candidate band).
 void ConfirmOuterRaceOnPrewhitened(const Record& record,
                                    const BearingGeometry& bearing,
                                    double shaft_hz,
-                                   const AnalysisSignal& signal,
+                                   EnvelopeAnalyzer& analyzer,
                                    double alpha_need,
                                    const DetectionContext& ctx,
                                    const DetectionOptions& dopt,
@@ -713,7 +713,10 @@ void ConfirmOuterRaceOnPrewhitened(const Record& record,
                                    Diagnosis* d) {
   if (d->verdict != Verdict::kOuterRace || !options.confirm_outer_race || options.prewhiten) return;
   const FaultFamily& outer = d->families[static_cast<int>(FaultComponent::kOuterRace)];
-  EnvelopeAnalyzer whitened = EnvelopeAnalyzer::Prewhitened(signal.raw, d->sample_rate_hz);
+  // The analyser is of the raw record here (options.prewhiten is off) and is not needed after
+  // this step, so it is whitened in place: no second transform of the record.
+  analyzer.Whiten();
+  EnvelopeAnalyzer& whitened = analyzer;
   const double df = whitened.resolution_hz();
   const double max_alpha =
       std::min(d->band.width_hz(), alpha_need + (options.floor_window_bins / 2 + 2) * df);
@@ -786,7 +789,7 @@ Diagnosis Diagnose(const Record& record,
   ExplainAndConclude(
       ctx, dopt, needs.duration_s, d.measured_shaft_hz.value_or(shaft_hz), options, &d);
   ConfirmOuterRaceOnPrewhitened(
-      record, bearing, shaft_hz, signal, needs.alpha_need, ctx, dopt, options, &d);
+      record, bearing, shaft_hz, analyzer, needs.alpha_need, ctx, dopt, options, &d);
   return d;
 }
 

@@ -107,9 +107,9 @@ EnvelopeAnalyzer::EnvelopeAnalyzer(std::span<const double> x, double fs_hz) {
   }
   n_ = static_cast<int>(x.size());
   fs_hz_ = fs_hz;
-  spectrum_.resize(n_ / 2 + 1);
+  spectrum_ = AllocateComplex(n_ / 2 + 1);
   RealFft fft(n_);
-  fft.Forward(x.data(), spectrum_.data());
+  fft.Forward(x.data(), spectrum_.get());
   spectrum_[0] = 0.0;  // removes the mean
 }
 
@@ -119,8 +119,12 @@ EnvelopeAnalyzer& EnvelopeAnalyzer::operator=(EnvelopeAnalyzer&&) noexcept = def
 
 EnvelopeAnalyzer EnvelopeAnalyzer::Prewhitened(std::span<const double> x, double fs_hz) {
   EnvelopeAnalyzer analyzer(x, fs_hz);
-  WhitenSpectrum(analyzer.spectrum_, analyzer.n_);
+  analyzer.Whiten();
   return analyzer;
+}
+
+void EnvelopeAnalyzer::Whiten() {
+  WhitenSpectrum({spectrum_.get(), static_cast<size_t>(n_ / 2 + 1)}, n_);
 }
 
 EnvelopeAnalyzer::BandBins EnvelopeAnalyzer::Resolve(const Band& band, double max_alpha_hz) const {
@@ -246,7 +250,7 @@ std::vector<double> EnvelopeAnalyzer::SesPowerFast(const Band& band,
   // P_true = gain^4 P.
   const int nb = b.k2 - b.k1 + 1;
   const double energy = SumOfSquares(
-      {reinterpret_cast<const double*>(spectrum_.data() + b.k1), static_cast<size_t>(2 * nb)});
+      {reinterpret_cast<const double*>(spectrum_.get() + b.k1), static_cast<size_t>(2 * nb)});
   const double rms = std::sqrt(energy / nb);
   std::vector<double> power(b.alpha_bins + 1, 0.0);
   if (!(rms > 0.0)) return power;  // an empty band: SE is 0

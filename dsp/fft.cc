@@ -149,8 +149,18 @@ RealFft::RealFft(int n, PlanRigor rigor) : n_(n) {
   SPALLKIT_CHECK(n >= 1, "RealFft size must be positive, got " << n);
   forward_ = CachedPlan({Kind::kR2c, n, 0, 1, false, rigor});
   inverse_ = CachedPlan({Kind::kC2r, n, 0, 1, false, rigor});
-  real_ = fftw_alloc_real(n);
-  spec_ = reinterpret_cast<std::complex<double>*>(fftw_alloc_complex(n / 2 + 1));
+}
+
+// The scratch arrays are made on first need: a forward transform between aligned arrays uses
+// none, and untouched megabytes still cost their allocation.
+double* RealFft::RealScratch() {
+  if (!real_) real_ = fftw_alloc_real(n_);
+  return real_;
+}
+
+std::complex<double>* RealFft::SpectrumScratch() {
+  if (!spec_) spec_ = reinterpret_cast<std::complex<double>*>(fftw_alloc_complex(n_ / 2 + 1));
+  return spec_;
 }
 
 RealFft::~RealFft() {
@@ -162,26 +172,31 @@ void RealFft::Forward(const double* in, std::complex<double>* out) {
   const auto plan = static_cast<fftw_plan>(forward_);
   // The r2c out-of-place plan preserves its input, so the caller's arrays are used directly
   // when their alignment matches the plan's.
-  if (SameAlignment(in, real_) && SameAlignment(out, spec_) &&
+  // (fftw_alignment_of(nullptr) is 0, the alignment of every fftw_malloc'ed array.)
+  if (SameAlignment(in, nullptr) && SameAlignment(out, nullptr) &&
       static_cast<const void*>(in) != static_cast<const void*>(out)) {
     fftw_execute_dft_r2c(plan, const_cast<double*>(in), AsFftw(out));
     return;
   }
-  std::memcpy(real_, in, sizeof(double) * n_);
-  fftw_execute_dft_r2c(plan, real_, AsFftw(spec_));
-  std::memcpy(static_cast<void*>(out), spec_, sizeof(fftw_complex) * (n_ / 2 + 1));
+  double* real = RealScratch();
+  std::complex<double>* spec = SpectrumScratch();
+  std::memcpy(real, in, sizeof(double) * n_);
+  fftw_execute_dft_r2c(plan, real, AsFftw(spec));
+  std::memcpy(static_cast<void*>(out), spec, sizeof(fftw_complex) * (n_ / 2 + 1));
 }
 
 void RealFft::Inverse(const std::complex<double>* in, double* out) {
   // c2r destroys its input, so it always runs on the scratch copy.
-  std::memcpy(static_cast<void*>(spec_), in, sizeof(fftw_complex) * (n_ / 2 + 1));
+  std::complex<double>* spec = SpectrumScratch();
+  std::memcpy(static_cast<void*>(spec), in, sizeof(fftw_complex) * (n_ / 2 + 1));
   const auto plan = static_cast<fftw_plan>(inverse_);
-  if (SameAlignment(out, real_)) {
-    fftw_execute_dft_c2r(plan, AsFftw(spec_), out);
+  if (SameAlignment(out, nullptr)) {
+    fftw_execute_dft_c2r(plan, AsFftw(spec), out);
     return;
   }
-  fftw_execute_dft_c2r(plan, AsFftw(spec_), real_);
-  std::memcpy(out, real_, sizeof(double) * n_);
+  double* real = RealScratch();
+  fftw_execute_dft_c2r(plan, AsFftw(spec), real);
+  std::memcpy(out, real, sizeof(double) * n_);
 }
 
 ComplexFft::ComplexFft(int n, int sign, int howmany, PlanRigor rigor)

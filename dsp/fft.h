@@ -52,9 +52,12 @@ class RealFft {
   void Inverse(const std::complex<double>* in, double* out);
 
  private:
+  double* RealScratch();
+  std::complex<double>* SpectrumScratch();
+
   int n_;
-  double* real_ = nullptr;                // fftw_malloc'ed, n reals
-  std::complex<double>* spec_ = nullptr;  // fftw_malloc'ed, n/2+1 bins
+  double* real_ = nullptr;                // fftw_malloc'ed on first need, n reals
+  std::complex<double>* spec_ = nullptr;  // fftw_malloc'ed on first need, n/2+1 bins
   void* forward_ = nullptr;               // fftw_plan
   void* inverse_ = nullptr;               // fftw_plan
 };
