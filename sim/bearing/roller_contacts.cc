@@ -331,7 +331,9 @@ double RollerContacts::Contact(
   // differences give these forces (with v^(n-1/2) alone it is first order in the step).
   const double half = 0.5 * (0.5 * (dt_prev_ + dt));
   const Body& b = rollers_[j];
+  const bool books = options_.energy_books;
   auto Defer = [&](const RacePoint& p, double fx, double fy, int friction) {
+    if (!books) return;
     DissipativeForce d;
     d.fx = fx, d.fy = fy;
     d.ax = p.px - b.x, d.ay = p.py - b.y;
@@ -615,11 +617,13 @@ void RollerContacts::Integrate(double t, double dt) {
   auto centred_energy = [](const Body& a, const Body& b, double m, double inertia) {
     return 0.5 * m * (a.vx * b.vx + a.vy * b.vy) + 0.5 * inertia * a.omega * b.omega;
   };
+  const bool books = options_.energy_books;
   for (int j = 0; j < num_rollers(); ++j) {
     Body& b = rollers_[j];
     const Body old = b;
     b.Advance(fx_[j], fy_[j], torque_[j], roller_mass_[j], roller_inertia_[j], dt_avg, dt);
     RotateCosSin(dt * b.omega, b.angle, &cos_[j], &sin_[j]);
+    if (!books) continue;
     kinetic += b.KineticEnergy(roller_mass_[j], roller_inertia_[j]);
     centred += centred_energy(old, b, roller_mass_[j], roller_inertia_[j]);
   }
