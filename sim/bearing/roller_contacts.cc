@@ -325,23 +325,8 @@ void RollerContacts::ApplyCounter(Counter body, double px, double py, double fx,
   }
 }
 
-// A contact's penetration moves by a small fraction of itself from one step to the next, so
-// d^(10/9) is a cubic Taylor expansion about the last exactly computed point d0 while |d / d0 - 1|
-// <= 1e-3 (truncation below 1e-14 relative: the next term is 0.0086 r^4), and std::pow only
-// when the penetration has moved further. The expansion point is state (checkpointed), so a
-// resumed run takes the same branches.
 double RollerContacts::PalmgrenPower(double d, int anchor) {
-  constexpr double kSpan = 1e-3;
-  constexpr double p = 10.0 / 9.0, c2 = p * (p - 1.0) / 2.0, c3 = c2 * (p - 2.0) / 3.0;
-  double& d0 = anchor_depth_[anchor];
-  double& p0 = anchor_power_[anchor];
-  const double r = d / d0 - 1.0;  // d0 = 0: infinite
-  if (!(std::abs(r) <= kSpan)) {
-    d0 = d;
-    p0 = std::pow(d, p);
-    return p0;
-  }
-  return p0 * (1.0 + r * (p + r * (c2 + r * c3)));
+  return PalmgrenPowerNear(d, &anchor_depth_[anchor], &anchor_power_[anchor]);
 }
 
 double RollerContacts::Contact(

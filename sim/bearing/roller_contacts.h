@@ -51,6 +51,7 @@
 
 #include "sim/bearing/constraints.h"
 #include "sim/bearing/mesher.h"
+#include "sim/bearing/palmgren_power.h"
 #include "sim/bearing/rigid_body.h"
 #include "sim/bearing/roller_profile.h"
 #include "sim/bearing/scene.h"
@@ -206,7 +207,8 @@ class RollerContacts {
   void CageContacts(int j);
   // Central-difference update of every rigid body and the energy books.
   void Integrate(double t, double dt);
-  // Palmgren's d^(10/9) at penetration d > 0 for contact point `anchor` (3 per friction slot).
+  // Palmgren's d^(10/9) at penetration d > 0 for contact point `anchor` (3 per friction slot;
+  // sim/bearing/palmgren_power.h).
   double PalmgrenPower(double d, int anchor);
   double Kept(double energy) const {
     return options_.energy_books ? energy : std::numeric_limits<double>::quiet_NaN();
@@ -249,7 +251,7 @@ class RollerContacts {
   Body cage_, shaft_;
   std::vector<double> friction_;  // tangential spring force per (roller, contact): outer,
                                   // inner, leading wall, trailing wall
-  // PalmgrenPower's expansion points per contact point: depth d0 and d0^(10/9) exactly.
+  // PalmgrenPowerNear's expansion points per contact point: depth d0 and d0^(10/9) exactly.
   std::vector<double> anchor_depth_, anchor_power_;
   std::vector<double> outer_force_, inner_force_, cage_force_;
   double dt_prev_ = 0, potential_ = 0, kinetic_ = 0, friction_work_ = 0, damping_work_ = 0,
