@@ -324,7 +324,7 @@ std::string RollerCageSeparation::Describe() const {
                 sizeof buf,
                 "rolling element and cage comb not separable: the bearing's f_b lies %.3g Hz "
                 "(%.2g SES bins) from the nearest cage harmonic, too close for this record's "
-                "resolution to tell a roller comb from a cage comb; ordered by harmonic evidence",
+                "resolution to tell a roller comb from a cage comb by their rates",
                 offset_hz,
                 offset_bins);
   return buf;
@@ -375,10 +375,10 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
     if (f.component == FaultComponent::kRollingElement && cage_hz > 0.0)
       forest_floor_hz = RollerForestFloorHz(f.fundamental_hz, cage_hz, explanation.sideband_orders);
   double cage_measured_hz = 0.0;
-  bool cage_detected = false;
+  const FamilyDetection* cage_det = nullptr;
   for (size_t i = 0; i < families.size(); ++i) {
     if (families[i].component != FaultComponent::kCage || !detections[i].detected) continue;
-    cage_detected = true;
+    cage_det = &detections[i];
     double num = 0.0, den = 0.0;
     int used = 0;
     for (const LineEvidence& e : detections[i].lines)
@@ -391,7 +391,7 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
   for (size_t i = 0; i < families.size(); ++i) {
     if (families[i].component != FaultComponent::kRollingElement || !detections[i].detected)
       continue;
-    if (cage_detected && cage_hz > 0.0) {
+    if (cage_det && cage_hz > 0.0) {
       // Can the record tell this bearing's roller comb from a cage comb at all?
       const double f_b = families[i].fundamental_hz;
       RollerCageSeparation& sep = out.roller_cage;
@@ -412,10 +412,16 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
     // both rates together). Call it a cage comb only when the integer is also the nearer one.
     const double kinematic_ratio = cage_hz > 0.0 ? families[i].fundamental_hz / cage_hz
                                                  : std::numeric_limits<double>::infinity();
-    out.roller_is_cage_comb =
-        out.roller_cage.separable &&
+    const bool on_integer =
         std::abs(out.roller_integer_ratio_mismatch) <= explanation.integer_ratio_tolerance &&
         std::abs(ratio - n) < std::abs(ratio - kinematic_ratio);
+    // Unresolved, the ratio may sit on the integer by its measurement error alone, and a roller
+    // spall's load-zone lines may outweigh its f_b harmonics: the detected roller comb is taken
+    // for a dense cage comb only when both say so.
+    out.roller_is_cage_comb = out.roller_cage.separable ? on_integer
+                                                        : on_integer && cage_det &&
+                                                              cage_det->harmonic_evidence >
+                                                                  detections[i].harmonic_evidence;
   }
 
   // Outer against inner race on the harmonics only one of them predicts.
@@ -433,8 +439,8 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
     using C = FaultComponent;
     const bool rc = a.component == C::kRollingElement && b.component == C::kCage;
     const bool cr = a.component == C::kCage && b.component == C::kRollingElement;
-    if (rc && out.roller_cage.separable) return !out.roller_is_cage_comb;
-    if (cr && out.roller_cage.separable) return out.roller_is_cage_comb;
+    if (rc) return !out.roller_is_cage_comb;
+    if (cr) return out.roller_is_cage_comb;
     const bool oi = a.component == C::kOuterRace && b.component == C::kInnerRace;
     const bool io = a.component == C::kInnerRace && b.component == C::kOuterRace;
     if ((oi || io) && out.races.separable && out.races.outer_evidence != out.races.inner_evidence)

@@ -18,10 +18,10 @@
 // lines, unless its rate is an integer multiple of its own sideband spacing (f_b / f_sb within
 // integer_ratio_tolerance of an integer): then the "roller forest" is just a dense cage comb
 // (f_b / f_c = 2 (1 + d_m / d) is never an integer for the catalogue bearings: 13.85 N205EM, 11.83
-// 6205, 10.45 6203) and the cage explains it; a record too short to resolve the bearing's f_b
-// from the nearest cage harmonic cannot take that test (RollerCageSeparation). Other pairs, and
-// those two then, are ordered by harmonic evidence (mean -ln p of the family's own harmonics,
-// dsp/detection.h), which the lattice coincidences feed least.
+// 6205, 10.45 6203) and the cage explains it; on a record too short to resolve the bearing's f_b
+// from the nearest cage harmonic the cage's harmonic evidence must also be the stronger
+// (RollerCageSeparation). Other pairs are ordered by harmonic evidence (mean -ln p of the
+// family's own harmonics, dsp/detection.h), which the lattice coincidences feed least.
 #pragma once
 
 #include <string>
@@ -148,8 +148,10 @@ RaceSeparation SeparateRaces(const FamilyDetection& outer,
 // 0.17 f_c): below roller_cage_resolution_bins SES bins the roller forest's lines around the low
 // cage orders (BSF +/- m f_c, 0.08 f_c from 7 f_c on an N205EM) pull the measured cage rate by
 // up to a bin (a simulated roller spall on a 1 s record: 0.7-0.9 % low, the ratio lands on 14),
-// and the test decides on its own measurement error. Then the two are ordered by harmonic
-// evidence, like the other pairs, and the report says they could not be separated.
+// and the test decides on its own measurement error; nor can the harmonic evidence decide alone
+// (a roller spall's load-zone lines m f_c can outweigh its f_b harmonics). Then the roller comb
+// is taken for a cage comb only when the ratio sits on the integer AND the cage's harmonic
+// evidence is the stronger, and the report says the two could not be separated.
 struct RollerCageSeparation {
   bool tested = false;           // both the rolling element and the cage were detected on their own
   double offset_hz = 0.0;        // |f_b - n f_c| at the searched speed (kinematic ratio)
@@ -164,7 +166,7 @@ struct JointExplanation {
   std::vector<ExplainedLine> explained;  // every claimed line, in claiming order
   // f_b / f_sb - nearest integer, relative; NaN when not tested (no measured sideband spacing).
   double roller_integer_ratio_mismatch = 0.0;
-  bool roller_is_cage_comb = false;  // only decided when roller_cage.separable
+  bool roller_is_cage_comb = false;
   RollerCageSeparation roller_cage;
   RaceSeparation races;  // tested when both races were detected on their own
 };
