@@ -178,13 +178,15 @@ std::string LadderRung::Label() const {
   return os.str();
 }
 
-bool LadderOptions::Validate(std::string* error) const {
+bool LadderOptions::Validate(std::string* error, size_t min_rungs) const {
   auto fail = [&](const std::string& m) {
     if (error) *error = "bench ladder: " + m;
     return false;
   };
   if (scenes.empty()) return fail("no scenes");
-  if (rungs.size() < 2) return fail("needs at least two rungs (the last is the reference)");
+  if (rungs.size() < min_rungs)
+    return fail(min_rungs > 1 ? "needs at least two rungs (the last is the reference)"
+                              : "needs a rung");
   for (const LadderRung& r : rungs) {
     if (r.fidelity == Fidelity::kAuto)
       return fail("a rung's fidelity must be fe, hybrid or lumped");
@@ -194,16 +196,16 @@ bool LadderOptions::Validate(std::string* error) const {
   return true;
 }
 
-LadderSummary RunFidelityLadder(const LadderOptions& options,
-                                const std::function<void(const std::string&)>& progress) {
+std::vector<LadderRun> RunLadderScenes(const LadderOptions& options,
+                                       const std::function<void(const std::string&)>& progress) {
   std::string err;
-  if (!options.Validate(&err)) throw InputError(err);
-  LadderSummary out;
+  if (!options.Validate(&err, 1)) throw InputError(err);
+  std::vector<LadderRun> runs;
   for (const auto& [name, scene] : options.scenes)
     for (const LadderRung& rung : options.rungs) {
-      out.runs.push_back({name, rung, Measure(scene, rung, options.duration_s)});
+      runs.push_back({name, rung, Measure(scene, rung, options.duration_s)});
       if (progress) {
-        const LadderMetrics& m = out.runs.back().metrics;
+        const LadderMetrics& m = runs.back().metrics;
         std::ostringstream os;
         os.precision(4);
         os << name << " / " << rung.Label() << ": " << m.wall_s << " s wall, f_b " << m.f_b_hz
@@ -214,6 +216,15 @@ LadderSummary RunFidelityLadder(const LadderOptions& options,
         progress(os.str());
       }
     }
+  return runs;
+}
+
+LadderSummary RunFidelityLadder(const LadderOptions& options,
+                                const std::function<void(const std::string&)>& progress) {
+  std::string err;
+  if (!options.Validate(&err)) throw InputError(err);
+  LadderSummary out;
+  out.runs = RunLadderScenes(options, progress);
   const size_t nr = options.rungs.size();
   for (size_t r = 0; r < nr; ++r) {
     LadderRungSummary s;
@@ -292,19 +303,27 @@ std::string LadderSummary::Table() const {
 std::vector<LadderTrendResult> EvaluateTrends(const LadderSummary& summary,
                                               const std::vector<LadderTrend>& trends,
                                               double flat_ratio) {
+  std::vector<LadderRung> rungs;
+  for (const LadderRungSummary& r : summary.rungs) rungs.push_back(r.rung);
+  return EvaluateTrends(summary.runs, rungs, trends, flat_ratio);
+}
+
+std::vector<LadderTrendResult> EvaluateTrends(const std::vector<LadderRun>& runs,
+                                              const std::vector<LadderRung>& rungs,
+                                              const std::vector<LadderTrend>& trends,
+                                              double flat_ratio) {
   std::vector<LadderTrendResult> out;
   for (const LadderTrend& trend : trends)
-    for (const LadderRungSummary& rung : summary.rungs) {
+    for (const LadderRung& rung : rungs) {
       LadderTrendResult r;
       r.name = trend.name;
-      r.rung = rung.rung;
+      r.rung = rung;
       for (const std::string& scene : trend.scenes) {
-        const auto run =
-            std::find_if(summary.runs.begin(), summary.runs.end(), [&](const LadderRun& x) {
-              return x.scene == scene && x.rung.fidelity == rung.rung.fidelity &&
-                     x.rung.mesh_m == rung.rung.mesh_m;
-            });
-        if (run == summary.runs.end())
+        const auto run = std::find_if(runs.begin(), runs.end(), [&](const LadderRun& x) {
+          return x.scene == scene && x.rung.fidelity == rung.fidelity &&
+                 x.rung.mesh_m == rung.mesh_m;
+        });
+        if (run == runs.end())
           throw InputError("bench ladder: trend '" + trend.name + "' names scene '" + scene +
                            "', which the ladder did not run");
         r.rms.push_back(run->metrics.rms);

@@ -43,7 +43,8 @@ struct LadderOptions {
   // Coarse to fine; the last is the reference of the errors.
   std::vector<LadderRung> rungs;
   double duration_s = 0.15;  // simulated, every run
-  bool Validate(std::string* error) const;
+  // A ladder needs min_rungs = 2 (the last is the errors' reference); RunLadderScenes, 1.
+  bool Validate(std::string* error, size_t min_rungs = 2) const;
 };
 
 struct LadderMetrics {
@@ -89,8 +90,12 @@ struct LadderSummary {
   std::string Table() const;  // one line per rung
 };
 
-// Runs every scene at every rung (one thread each). `progress` gets one line per finished run.
-// Throws InputError for invalid options or scenes.
+// Runs every scene at every rung (one thread each), scene by scene. `progress` gets one line per
+// finished run. Throws InputError for invalid options (one rung is enough) or scenes.
+std::vector<LadderRun> RunLadderScenes(
+    const LadderOptions& options, const std::function<void(const std::string&)>& progress = {});
+// RunLadderScenes, then each rung's errors against the last rung. Throws InputError for invalid
+// options (fewer than two rungs) or scenes.
 LadderSummary RunFidelityLadder(const LadderOptions& options,
                                 const std::function<void(const std::string&)>& progress = {});
 
@@ -114,6 +119,11 @@ struct LadderTrendResult {
 // The trends at every rung of `summary` (flat_ratio: kFlat's bound). Throws InputError when a
 // trend names a scene the ladder did not run.
 std::vector<LadderTrendResult> EvaluateTrends(const LadderSummary& summary,
+                                              const std::vector<LadderTrend>& trends,
+                                              double flat_ratio = 1.5);
+// The same on runs of RunLadderScenes, for each of `rungs` (trend-major, as above).
+std::vector<LadderTrendResult> EvaluateTrends(const std::vector<LadderRun>& runs,
+                                              const std::vector<LadderRung>& rungs,
                                               const std::vector<LadderTrend>& trends,
                                               double flat_ratio = 1.5);
 // One line per trend and rung: the RMS values and whether the trend holds.
