@@ -666,14 +666,7 @@ std::string RollerContacts::SaveState() const {
   for (const Body& b : rollers_) put_body(b);
   put_body(cage_);
   put_body(shaft_);
-  for (const auto* v : {&friction_,
-                        &outer_force_,
-                        &inner_force_,
-                        &cage_force_,
-                        &cos_,
-                        &sin_,
-                        &anchor_depth_,
-                        &anchor_power_})
+  for (const std::vector<double>* v : StateVectors(*this))
     for (double x : *v) out.Put(x);
   for (double x : {dt_prev_,
                    potential_,
@@ -700,14 +693,7 @@ void RollerContacts::LoadState(const std::string& bytes) {
   for (Body& b : rollers_) get_body(&b);
   get_body(&cage_);
   get_body(&shaft_);
-  for (auto* v : {&friction_,
-                  &outer_force_,
-                  &inner_force_,
-                  &cage_force_,
-                  &cos_,
-                  &sin_,
-                  &anchor_depth_,
-                  &anchor_power_})
+  for (std::vector<double>* v : StateVectors(*this))
     for (double& x : *v) x = in.Get<double>();
   for (double* x : {&dt_prev_,
                     &potential_,

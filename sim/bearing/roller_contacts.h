@@ -45,6 +45,7 @@
 // t^n (step n's force over its first half step).
 #pragma once
 
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -210,6 +211,18 @@ class RollerContacts {
   // Palmgren's d^(10/9) at penetration d > 0 for contact point `anchor` (3 per friction slot;
   // sim/bearing/palmgren_power.h).
   double PalmgrenPower(double d, int anchor);
+  // The per-roller state vectors in checkpoint order (SaveState, LoadState).
+  template <class Self>
+  static auto StateVectors(Self& self) {
+    return std::array{&self.friction_,
+                      &self.outer_force_,
+                      &self.inner_force_,
+                      &self.cage_force_,
+                      &self.cos_,
+                      &self.sin_,
+                      &self.anchor_depth_,
+                      &self.anchor_power_};
+  }
   double Kept(double energy) const {
     return options_.energy_books ? energy : std::numeric_limits<double>::quiet_NaN();
   }
