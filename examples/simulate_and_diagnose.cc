@@ -21,10 +21,8 @@ int main(int argc, char** argv) {
   namespace sim = spallkit::sim;
   const std::string path = argc > 1 ? argv[1] : "datasets/scenes/paper-verification.toml";
   try {
-    const sim::Scene scene = sim::LoadScene(path,
-                                            {"model.fidelity=lumped",
-                                             "run.duration_s=1",
-                                             "friction.model=ehl"});
+    const sim::Scene scene =
+        sim::LoadScene(path, {"model.fidelity=lumped", "run.duration_s=1", "friction.model=ehl"});
     sim::Simulation simulation(scene, {});  // default options: results stay in memory
     std::printf("%s\n", simulation.Run().BriefReport().c_str());
 
