@@ -38,10 +38,7 @@ std::string FullFeUnavailable(const Scene& scene) {
 }
 
 namespace {
-bool AsksForField(const Scene& scene) {
-  return std::find(scene.outputs.begin(), scene.outputs.end(), Output::kField) !=
-         scene.outputs.end();
-}
+bool AsksForField(const Scene& scene) { return Asks(scene.outputs, Output::kField); }
 }  // namespace
 
 std::string AutoFidelityConflict(const Scene& scene) {

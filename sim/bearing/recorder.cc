@@ -91,10 +91,7 @@ Recorder::Recorder(const BearingModel& model, const RecorderOptions& options)
   }
 }
 
-bool Recorder::Wants(Output output) const {
-  return std::find(options_.outputs.begin(), options_.outputs.end(), output) !=
-         options_.outputs.end();
-}
+bool Recorder::Wants(Output output) const { return Asks(options_.outputs, output); }
 
 const Recorder::Series* Recorder::Find(const std::string& path) const {
   for (const Series& s : series_)

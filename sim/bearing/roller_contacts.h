@@ -132,7 +132,6 @@ class RollerContacts {
   double ContactEnergy() const { return Kept(potential_); }
   double FrictionWork() const { return Kept(friction_work_); }
   double DampingWork() const { return Kept(damping_work_); }
-  bool KeepsEnergyBooks() const { return options_.energy_books; }
   std::string SaveState() const;
   void LoadState(const std::string& bytes);  // throws InputError on a size mismatch
 

@@ -601,6 +601,10 @@ bool ParseStartPose(const std::string& name, StartPose* start) {
   return ParseName(kStartPoseNames, name, start);
 }
 
+bool Asks(const std::vector<Output>& outputs, Output output) {
+  return std::find(outputs.begin(), outputs.end(), output) != outputs.end();
+}
+
 const char* AxisName(Axis axis) { return NameOf(kAxisNames, axis); }
 bool ParseAxis(const std::string& name, Axis* axis) { return ParseName(kAxisNames, name, axis); }
 

@@ -179,6 +179,8 @@ enum class Output { kContactForces, kAcceleration, kCage, kRollers, kEnergy, kFi
 // Scene-file names: "contact_forces", "acceleration", "cage", "rollers", "energy", "field".
 const char* OutputName(Output output);
 bool ParseOutput(const std::string& name, Output* output);
+// Whether `outputs` (a scene's [run] outputs) holds `output`.
+bool Asks(const std::vector<Output>& outputs, Output output);
 
 // [model]: keys fidelity, adapter, race_contact, start.
 struct SceneModel {

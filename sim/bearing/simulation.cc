@@ -57,9 +57,8 @@ Simulation::Simulation(const Scene& scene, SimulationOptions options)
   // Skip what is not needed: the rigid-roller models keep their per-step energy books only
   // when the energy output or the energy guard reads them.
   BearingModelOptions model_options = options_.model;
-  const bool energy_read = std::find(scene.outputs.begin(), scene.outputs.end(), Output::kEnergy) !=
-                               scene.outputs.end() ||
-                           scene.solver.max_energy_error_percent > 0.0;
+  const bool energy_read =
+      Asks(scene.outputs, Output::kEnergy) || scene.solver.max_energy_error_percent > 0.0;
   if (!energy_read) model_options.hybrid.energy_books = false;
   model_ = MakeBearingModel(WithChosenFidelity(scene, &choice), model_options);
   fidelity_reason_ = choice.reason;

@@ -39,21 +39,19 @@ double EhlTraction::Force(double normal_force,
   const double v = std::abs(slip_speed);
   if (!(v > 0.0) || !(normal_force > 0.0)) return 0.0;
   const double ue = std::abs(entrainment_speed);
-  if (dt > 0.0) {
-    // 1 - exp(-x) >= x / (1 + x) with x = s / s_0 = v / (u_e s_0): where the stopping force
-    // m v / (2 dt) is below that bound of the curve, i.e. m (u_e s_0 + v) / 2 <= Lambda N dt
-    // (multiplied out: no division on this path), the minimum is the stopping force and the
-    // exponential is not needed (a rolling roller's small slip, where the curve is steeper than
-    // the step resolves).
-    const double stop = 0.5 * tangential_mass * v / dt;
-    if (0.5 * tangential_mass * (ue * slide_roll_scale + v) <=
-        limiting_coefficient * normal_force * dt)
-      return -std::copysign(stop, slip_speed);
-  }
+  // The force that stops the slip within the step (no step: no limit).
+  const double stop =
+      dt > 0.0 ? 0.5 * tangential_mass * v / dt : std::numeric_limits<double>::infinity();
+  // 1 - exp(-x) >= x / (1 + x) with x = s / s_0 = v / (u_e s_0): where the stopping force
+  // m v / (2 dt) is below that bound of the curve, i.e. m (u_e s_0 + v) / 2 <= Lambda N dt
+  // (multiplied out: no division in the test), the minimum is the stopping force and the
+  // exponential is not needed (a rolling roller's small slip, where the curve is steeper than
+  // the step resolves).
+  if (dt > 0.0 && 0.5 * tangential_mass * (ue * slide_roll_scale + v) <=
+                      limiting_coefficient * normal_force * dt)
+    return -std::copysign(stop, slip_speed);
   const double s = ue > 0.0 ? v / ue : std::numeric_limits<double>::infinity();
-  const double curve = Coefficient(s) * normal_force;
-  const double stop = dt > 0.0 ? 0.5 * tangential_mass * v / dt : curve;
-  return -std::copysign(std::min(curve, stop), slip_speed);
+  return -std::copysign(std::min(Coefficient(s) * normal_force, stop), slip_speed);
 }
 
 bool EhlTraction::IsValid(std::string* error) const {
