@@ -187,6 +187,13 @@ RollerContacts::RollerContacts(const Scene& scene,
   cage_force_.assign(z, 0.0);
   // Reduced masses of each roller with each counter body (normal; tangential with the roller's
   // m/3 for a force on its rim), in Counter order.
+  for (int j = 0; j < z; ++j) {
+    inverse_roller_mass_.push_back(1.0 / roller_mass_[j]);
+    inverse_roller_inertia_.push_back(1.0 / roller_inertia_[j]);
+  }
+  inverse_counter_mass_[0] = 1.0 / race_mass_;
+  inverse_counter_mass_[1] = 1.0 / shaft_mass_;
+  inverse_counter_mass_[2] = 1.0 / cage_mass_;
   for (int j = 0; j < z; ++j)
     for (double m_counter : {race_mass_, shaft_mass_, cage_mass_}) {
       reduced_mass_.push_back(1.0 / (1.0 / roller_mass_[j] + 1.0 / m_counter));
@@ -209,6 +216,25 @@ void RollerContacts::RollerCentre(int j, double* x, double* y) const {
   const double c = std::cos(b.angle), s = std::sin(b.angle);
   *x = b.x - (c * centroid_x_[j] - s * centroid_y_[j]);
   *y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
+}
+
+bool RollerContacts::SpallNearRace(double margin) const {
+  for (int j = 0; j < num_rollers(); ++j) {
+    if (!profiles_[j].spalled) continue;
+    const double cos_widened = std::cos(std::min(kPi, profiles_[j].ContactHalfAngle() + margin));
+    const Body& b = rollers_[j];
+    const double c = cos_[j], s = sin_[j];
+    const double x = b.x - (c * centroid_x_[j] - s * centroid_y_[j]);
+    const double y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
+    const double d_out = std::hypot(x, y);
+    const double ex = shaft_.x - x, ey = shaft_.y - y, d_in = std::hypot(ex, ey);
+    // Directions to the outer and the inner race in the roller's frame.
+    const double out_x = x / d_out, out_y = y / d_out, in_x = ex / d_in, in_y = ey / d_in;
+    if (directions_[j].NearSpall(c * out_x + s * out_y, c * out_y - s * out_x, cos_widened) ||
+        directions_[j].NearSpall(c * in_x + s * in_y, c * in_y - s * in_x, cos_widened))
+      return true;
+  }
+  return false;
 }
 
 int RollerContacts::ContactCircles(
@@ -337,19 +363,8 @@ double RollerContacts::Contact(
   // differences give these forces (with v^(n-1/2) alone it is first order in the step).
   const double half = 0.5 * (0.5 * (dt_prev_ + dt));
   const Body& b = rollers_[j];
-  const bool books = options_.energy_books;
   auto Defer = [&](const RacePoint& p, double fx, double fy, int friction) {
-    if (!books) return;
-    DissipativeForce d;
-    d.fx = fx, d.fy = fy;
-    d.ax = p.px - b.x, d.ay = p.py - b.y;
-    d.px = p.px, d.py = p.py;
-    const Body& c = body == Counter::kShaft ? shaft_ : cage_;
-    d.bx = p.px - c.x, d.by = p.py - c.y;
-    d.omega = body == Counter::kShaft ? omega_s_ : 0.0;
-    d.weight = half;
-    d.roller = j, d.counter = static_cast<int>(body), d.friction = friction;
-    pending_.push_back(d);
+    DeferDissipation(j, body, p.px, p.py, fx, fy, friction);
   };
   // Damping of each contact: a fraction of ITS critical value, i.e. with the reduced mass of
   // the roller and the counter body (LS-DYNA's viscous contact damping does the same with the
@@ -423,34 +438,101 @@ double RollerContacts::Contact(
     *spring = 0.0;
     return 0.0;
   }
-  // The contact module's friction law: stick spring returned to mu(v_t) Q, plus a damper on
-  // the stick spring (capped too).
   const double vt = vt_acc / q_total;
-  double f;
+  double f = 0.0;
   if (palmgren && scene_.friction.model == contact::TractionModel::kEhl) {
-    // Lubricated race contact: the traction curve of the slide-to-roll ratio, no stick.
-    f = scene_.friction.ehl.Force(q_total, vt, ue_acc / q_total, m_t, dt);
-    *spring = f;
+    // Lubricated race contact: the traction curve of the slide-to-roll ratio, no stick; solved
+    // with the roller's other lubricated contacts once all its other forces are known.
+    TractionContact& c = traction_[num_traction_++];
+    c.body = body, c.tx = tx, c.ty = ty, c.normal = q_total, c.slip = vt;
+    c.entrainment = ue_acc / q_total, c.spring = spring, c.npts = 0, c.arm = 0.0;
+    for (int k = 0; k < npts; ++k) {
+      if (!(q[k] > 0)) continue;
+      const double w = q[k] / q_total;
+      c.px[c.npts] = pts[k].px, c.py[c.npts] = pts[k].py, c.w[c.npts++] = w;
+      c.arm += w * ((pts[k].px - b.x) * ty - (pts[k].py - b.y) * tx);
+    }
   } else {
+    // The contact module's friction law: stick spring returned to mu(v_t) Q, plus a damper on
+    // the stick spring (capped too).
     const double cap = friction_law_.Coefficient(vt) * q_total;
     const double kt = options_.tangential_stiffness_ratio * kn_total;
     const double ct = 2.0 * zeta * std::sqrt(kt * m_t);
     const double fs = contact::ReturnMap(*spring, vt * dt, kt, cap).force;
     f = std::clamp(fs - ct * vt, -cap, cap);
     *spring = fs;
+    friction_work_ -= f * vt * half;
   }
-  friction_work_ -= f * vt * half;
   for (int k = 0; k < npts; ++k) {
     if (!(q[k] > 0)) continue;
     const RacePoint& p = pts[k];
     const double ft = f * q[k] / q_total;
-    Defer(p, ft * tx, ft * ty, 1);
+    if (ft != 0.0) Defer(p, ft * tx, ft * ty, 1);
     const double fx = q[k] * p.nx + ft * tx, fy = q[k] * p.ny + ft * ty;
     fx_[j] += fx, fy_[j] += fy;
     torque_[j] += (p.px - b.x) * fy - (p.py - b.y) * fx;
     ApplyCounter(body, p.px, p.py, -fx, -fy);
   }
   return q_total;
+}
+
+void RollerContacts::DeferDissipation(
+    int j, Counter body, double px, double py, double fx, double fy, int friction) {
+  if (!options_.energy_books) return;
+  const Body& b = rollers_[j];
+  DissipativeForce d;
+  d.fx = fx, d.fy = fy;
+  d.ax = px - b.x, d.ay = py - b.y;
+  d.px = px, d.py = py;
+  const Body& c = body == Counter::kShaft ? shaft_ : cage_;
+  d.bx = px - c.x, d.by = py - c.y;
+  d.omega = body == Counter::kShaft ? omega_s_ : 0.0;
+  d.weight = 0.5 * (0.5 * (dt_prev_ + dt_));
+  d.roller = j, d.counter = static_cast<int>(body), d.friction = friction;
+  pending_.push_back(d);
+}
+
+void RollerContacts::SolveTraction(int j) {
+  const int n = num_traction_;
+  if (n == 0) return;
+  num_traction_ = 0;
+  const Body& b = rollers_[j];
+  const double dt_avg = 0.5 * (dt_prev_ + dt_), half = 0.5 * dt_avg;
+  const double dt_m = dt_avg * inverse_roller_mass_[j], dt_i = dt_avg * inverse_roller_inertia_[j];
+  // The roller's velocity change over the step from its forces so far (normal, damping, cage):
+  // the free slip of each contact. The counter bodies' changes are left to the next step (the
+  // ring and the shaft are much heavier, the shaft's spin is prescribed).
+  const double dvx = dt_m * fx_[j], dvy = dt_m * fy_[j], dw = dt_i * torque_[j];
+  constexpr int kN = contact::kMaxImplicitContacts;
+  double normal[kN] = {}, free_slip[kN] = {}, entrainment[kN] = {}, compliance[kN * kN] = {},
+         force[kN] = {};
+  for (int k = 0; k < n; ++k) {
+    const TractionContact& c = traction_[k];
+    normal[k] = c.normal, entrainment[k] = c.entrainment;
+    free_slip[k] = c.slip + c.tx * dvx + c.ty * dvy + c.arm * dw;
+    for (int l = 0; l < n; ++l) {
+      const TractionContact& e = traction_[l];
+      compliance[k * n + l] = (c.tx * e.tx + c.ty * e.ty) * dt_m + c.arm * e.arm * dt_i;
+    }
+    compliance[k * n + k] += dt_avg * inverse_counter_mass_[static_cast<int>(c.body)];
+  }
+  double secant[kN] = {};
+  for (int k = 0; k < n; ++k) secant[k] = *traction_[k].spring;
+  contact::SolveImplicitTraction(
+      scene_.friction.ehl, n, normal, free_slip, entrainment, compliance, secant, force);
+  for (int k = 0; k < n; ++k) {
+    const TractionContact& c = traction_[k];
+    const double f = force[k];
+    *c.spring = secant[k];
+    friction_work_ -= f * c.slip * half;
+    for (int i = 0; i < c.npts; ++i) {
+      const double fx = f * c.w[i] * c.tx, fy = f * c.w[i] * c.ty;
+      DeferDissipation(j, c.body, c.px[i], c.py[i], fx, fy, 1);
+      fx_[j] += fx, fy_[j] += fy;
+      torque_[j] += (c.px[i] - b.x) * fy - (c.py[i] - b.y) * fx;
+      ApplyCounter(c.body, c.px[i], c.py[i], -fx, -fy);
+    }
+  }
 }
 
 void RollerContacts::RaceContacts(
@@ -610,6 +692,7 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
     if (f < 1.0)
       RaceContacts(j, intact_profiles_[j], intact_directions_[j], 1.0 - f, kFrictionSlots * j + 4);
     CageContacts(j);
+    SolveTraction(j);
   }
   potential_ = step_potential_;
   Integrate(t, dt);

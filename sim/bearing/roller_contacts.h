@@ -57,6 +57,7 @@
 #include "sim/bearing/roller_profile.h"
 #include "sim/bearing/scene.h"
 #include "sim/contact/friction.h"
+#include "sim/contact/traction.h"
 #include "sim/solver/explicit_solver.h"
 
 namespace spallkit::sim {
@@ -156,6 +157,9 @@ class RollerContacts {
   double bound_normal_stiffness() const { return bound_normal_stiffness_; }
   // Circle centre of roller j (world).
   void RollerCentre(int j, double* x, double* y) const;
+  // Whether some spalled roller's spall faces a race within `margin` (rad) of roller rotation,
+  // i.e. a spall passage (edge contacts and the exit impact) is under way or about to start.
+  bool SpallNearRace(double margin) const;
   // Normal contact force magnitudes on roller j at the last step (N, whole section).
   double OuterForce(int j) const { return outer_force_[j]; }
   double InnerForce(int j) const { return inner_force_[j]; }
@@ -205,6 +209,14 @@ class RollerContacts {
       int j, const RollerProfile& profile, const ProfileDirections& dirs, double scale, int slot);
   // Pocket walls and the radial guide of roller j.
   void CageContacts(int j);
+  // The lubricated race contacts of roller j that Contact set aside (friction.model = "ehl"):
+  // their traction forces, solved implicitly once every other force on the roller is known
+  // (contact::SolveImplicitTraction), applied to the roller and the counter bodies.
+  void SolveTraction(int j);
+  // Keeps a friction (1) or damping (0) force of roller j at world point (px, py) for the
+  // second half of its work (FinishDissipation).
+  void DeferDissipation(
+      int j, Counter body, double px, double py, double fx, double fy, int friction);
   // Central-difference update of every rigid body and the energy books.
   void Integrate(double t, double dt);
   // Palmgren's d^(10/9) at penetration d > 0 for contact point `anchor` (3 per friction slot;
@@ -241,6 +253,19 @@ class RollerContacts {
     int roller, counter, friction;  // friction: 1, damping: 0
   };
 
+  // A lubricated race contact of the current roller, waiting for SolveTraction.
+  struct TractionContact {
+    Counter body;
+    double tx, ty;       // slip axis (the force on the roller is f (tx, ty))
+    double arm;          // sum_k w_k (p_k - roller centre) x t: the force's torque per newton
+    double normal;       // normal force (N)
+    double slip;         // slip speed at v^(n-1/2)
+    double entrainment;  // entrainment speed
+    double* spring;      // friction slot: keeps the secant per newton, the next step's guess
+    int npts;
+    double px[3], py[3], w[3];  // points and their shares q_k / q of the force
+  };
+
   Scene scene_;
   HybridOptions options_;
   CageGuideOptions cage_guide_;
@@ -257,12 +282,15 @@ class RollerContacts {
   double pocket_half_width_ = 0, pitch_radius_ = 0, inner_radius_ = 0;
   double k_c_ = 0, dt_limit_ = 0, roller_dt_ = 0, ring_dt_ = 0, bound_normal_stiffness_ = 0;
   std::vector<double> reduced_mass_, reduced_mass_t_;  // per (roller, Counter)
+  double inverse_counter_mass_[3] = {0, 0, 0};         // per Counter, for a tangential force
+  std::vector<double> inverse_roller_mass_, inverse_roller_inertia_;
 
   // State (checkpointed).
   std::vector<Body> rollers_;
   Body cage_, shaft_;
-  std::vector<double> friction_;  // tangential spring force per (roller, contact): outer,
-                                  // inner, leading wall, trailing wall
+  std::vector<double> friction_;  // per (roller, contact): outer, inner, leading wall, trailing
+                                  // wall; the stick spring's force (Coulomb), or a lubricated
+                                  // race contact's last traction secant per newton (SolveTraction)
   // PalmgrenPowerNear's expansion points per contact point: depth d0 and d0^(10/9) exactly.
   std::vector<double> anchor_depth_, anchor_power_;
   std::vector<double> outer_force_, inner_force_, cage_force_;
@@ -279,7 +307,9 @@ class RollerContacts {
   double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
          cage_torque_ = 0;
   std::vector<double> fx_, fy_, torque_;  // per roller
-  double cage_cos_ = 1, cage_sin_ = 0;    // of the cage's angle at x^n
+  TractionContact traction_[contact::kMaxImplicitContacts];
+  int num_traction_ = 0;
+  double cage_cos_ = 1, cage_sin_ = 0;  // of the cage's angle at x^n
   // Per roller at x^n: cos and sin of its angle (advanced with it in Integrate and
   // checkpointed: not recomputed from the angle), circle centre.
   std::vector<double> cos_, sin_, centre_x_, centre_y_;

@@ -31,27 +31,170 @@ double EhlTraction::Coefficient(double slide_to_roll) const {
   return -limiting_coefficient * std::expm1(-std::abs(slide_to_roll) / slide_roll_scale);
 }
 
-double EhlTraction::Force(double normal_force,
-                          double slip_speed,
-                          double entrainment_speed,
-                          double tangential_mass,
-                          double dt) const {
+namespace {
+// Entrainment below this counts as pure sliding for any slip above about 1e-8 m/s (s_0 = 0.01):
+// the curve stays continuous for the implicit solve.
+constexpr double kMinEntrainment = 1e-6;
+}  // namespace
+
+double EhlTraction::Secant(double normal_force, double slip_speed, double entrainment_speed) const {
   const double v = std::abs(slip_speed);
-  if (!(v > 0.0) || !(normal_force > 0.0)) return 0.0;
-  const double ue = std::abs(entrainment_speed);
-  // The force that stops the slip within the step (no step: no limit).
-  const double stop =
-      dt > 0.0 ? 0.5 * tangential_mass * v / dt : std::numeric_limits<double>::infinity();
-  // 1 - exp(-x) >= x / (1 + x) with x = s / s_0 = v / (u_e s_0): where the stopping force
-  // m v / (2 dt) is below that bound of the curve, i.e. m (u_e s_0 + v) / 2 <= Lambda N dt
-  // (multiplied out: no division in the test), the minimum is the stopping force and the
-  // exponential is not needed (a rolling roller's small slip, where the curve is steeper than
-  // the step resolves).
-  if (dt > 0.0 && 0.5 * tangential_mass * (ue * slide_roll_scale + v) <=
-                      limiting_coefficient * normal_force * dt)
-    return -std::copysign(stop, slip_speed);
-  const double s = ue > 0.0 ? v / ue : std::numeric_limits<double>::infinity();
-  return -std::copysign(std::min(Coefficient(s) * normal_force, stop), slip_speed);
+  const double scale = std::max(std::abs(entrainment_speed), kMinEntrainment) * slide_roll_scale;
+  const double x = v / scale, slope = limiting_coefficient * std::abs(normal_force) / scale;
+  // mu(x) / x; below x = 1e-2 the series (error < x^4 / 120 < 1e-10) spares the exponential
+  // (a rolling contact's creep).
+  if (x < 1e-2) return slope * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
+  return -slope * std::expm1(-x) / x;
+}
+
+void EhlTraction::CurveForce(double normal_force,
+                             double slip_speed,
+                             double entrainment_speed,
+                             double* force,
+                             double* slope) const {
+  const double v = std::abs(slip_speed);
+  const double scale = std::max(std::abs(entrainment_speed), kMinEntrainment) * slide_roll_scale;
+  const double x = v / scale, peak = limiting_coefficient * std::abs(normal_force);
+  double mu, decay;  // 1 - exp(-x), exp(-x)
+  if (x < 1e-2) {
+    decay = 1.0 - x * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
+    mu = x * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
+  } else {
+    mu = -std::expm1(-x);
+    decay = 1.0 - mu;
+  }
+  *force = std::copysign(peak * mu, slip_speed);
+  *slope = peak * decay / scale;
+}
+
+namespace {
+// Solves a x = b for n <= kMaxImplicitContacts (a and b are overwritten): one or two unknowns in
+// closed form (a roller's usual one or two lubricated contacts), more by elimination with
+// partial pivoting.
+void SolveSmall(int n, double a[][kMaxImplicitContacts], double* b, double* x) {
+  if (n == 1) {
+    x[0] = b[0] / a[0][0];
+    return;
+  }
+  if (n == 2) {
+    const double inverse_det = 1.0 / (a[0][0] * a[1][1] - a[0][1] * a[1][0]);
+    x[0] = (b[0] * a[1][1] - a[0][1] * b[1]) * inverse_det;
+    x[1] = (a[0][0] * b[1] - a[1][0] * b[0]) * inverse_det;
+    return;
+  }
+  for (int k = 0; k < n; ++k) {
+    int p = k;
+    for (int i = k + 1; i < n; ++i)
+      if (std::abs(a[i][k]) > std::abs(a[p][k])) p = i;
+    if (p != k) {
+      for (int l = 0; l < n; ++l) std::swap(a[k][l], a[p][l]);
+      std::swap(b[k], b[p]);
+    }
+    for (int i = k + 1; i < n; ++i) {
+      const double r = a[i][k] / a[k][k];
+      for (int l = k; l < n; ++l) a[i][l] -= r * a[k][l];
+      b[i] -= r * b[k];
+    }
+  }
+  for (int k = n - 1; k >= 0; --k) {
+    double v = b[k];
+    for (int l = k + 1; l < n; ++l) v -= a[k][l] * x[l];
+    x[k] = v / a[k][k];
+  }
+}
+}  // namespace
+
+void SolveImplicitTraction(const EhlTraction& law,
+                           int n,
+                           const double* normal_force,
+                           const double* free_slip,
+                           const double* entrainment_speed,
+                           const double* compliance,
+                           double* secant_guess,
+                           double* force) {
+  constexpr int kN = kMaxImplicitContacts;
+  double cap[kN], inverse_cap[kN];
+  for (int k = 0; k < n; ++k) {
+    cap[k] = normal_force[k] > 0.0 ? law.limiting_coefficient * normal_force[k] : 0.0;
+    inverse_cap[k] = cap[k] > 0.0 ? 1.0 / cap[k] : 0.0;
+  }
+  // First guess, exact where the secants are the curve's at the slips the step leaves:
+  // (D + A) f = -v_free, D = diag(1 / c_k), A the compliance. c_k: the last step's secant (a
+  // rolling contact's slip changes little from step to step), else the secant at the free slip.
+  {
+    double a[kN][kN], b[kN];
+    for (int k = 0; k < n; ++k) {
+      for (int l = 0; l < n; ++l) a[k][l] = cap[k] > 0 && cap[l] > 0 ? compliance[k * n + l] : 0.0;
+      if (!(cap[k] > 0)) {  // no film load, no force
+        a[k][k] = 1.0, b[k] = 0.0;
+        continue;
+      }
+      const double c = secant_guess[k] > 0.0
+                           ? secant_guess[k] * normal_force[k]
+                           : law.Secant(normal_force[k], free_slip[k], entrainment_speed[k]);
+      a[k][k] += 1.0 / c;
+      b[k] = -free_slip[k];
+    }
+    SolveSmall(n, a, b, force);
+    for (int k = 0; k < n; ++k) force[k] = std::clamp(force[k], -cap[k], cap[k]);
+  }
+  // Newton on R_k(f) = f_k + F_k(v_free,k + sum_l A_kl f_l) (F the curve's force along the
+  // slip), Jacobian I + diag(F'_k) A, with backtracking on max |R_k| / cap_k, until every
+  // |R_k| <= 1e-3 |f_k| + 1e-9 cap_k. The curve saturates, so the linear guess is off where a
+  // slip crosses its knee within the step.
+  double slope[kN], residual[kN], slip[kN];
+  bool converged = false;
+  auto evaluate = [&](const double* f, double* r, double* dfdv, double* v) {
+    double worst = 0.0;
+    converged = true;
+    for (int k = 0; k < n; ++k) {
+      v[k] = free_slip[k];
+      if (!(cap[k] > 0)) {
+        r[k] = f[k], dfdv[k] = 0.0;
+        continue;
+      }
+      for (int l = 0; l < n; ++l) v[k] += compliance[k * n + l] * f[l];
+      double curve;
+      law.CurveForce(normal_force[k], v[k], entrainment_speed[k], &curve, &dfdv[k]);
+      r[k] = f[k] + curve;
+      worst = std::max(worst, std::abs(r[k]) * inverse_cap[k]);
+      converged = converged && std::abs(r[k]) <= 1e-3 * std::abs(f[k]) + 1e-9 * cap[k];
+    }
+    return worst;
+  };
+  double worst = evaluate(force, residual, slope, slip);
+  for (int it = 0; it < 30 && !converged; ++it) {
+    double j[kN][kN], rhs[kN], step[kN];
+    for (int k = 0; k < n; ++k) {
+      for (int l = 0; l < n; ++l) j[k][l] = (k == l ? 1.0 : 0.0) + slope[k] * compliance[k * n + l];
+      rhs[k] = -residual[k];
+    }
+    SolveSmall(n, j, rhs, step);
+    double trial[kN], trial_residual[kN], trial_slope[kN], trial_slip[kN];
+    double scale = 1.0, trial_worst = worst;
+    for (int tries = 0; tries < 20; ++tries, scale *= 0.5) {
+      for (int k = 0; k < n; ++k)
+        trial[k] = std::clamp(force[k] + scale * step[k], -cap[k], cap[k]);
+      trial_worst = evaluate(trial, trial_residual, trial_slope, trial_slip);
+      if (trial_worst < worst || converged) break;
+    }
+    if (!(trial_worst < worst || converged)) break;  // no progress left in double precision
+    for (int k = 0; k < n; ++k) {
+      force[k] = trial[k], residual[k] = trial_residual[k];
+      slope[k] = trial_slope[k], slip[k] = trial_slip[k];
+    }
+    worst = trial_worst;
+  }
+  // The secants per newton at the slips this step leaves (the curve's force F_k = -f_k + R_k is
+  // at hand): the next step's guess. At zero slip, the slope.
+  for (int k = 0; k < n; ++k) {
+    if (!(cap[k] > 0)) {
+      secant_guess[k] = 0.0;
+      continue;
+    }
+    const double curve = std::abs(residual[k] - force[k]);
+    secant_guess[k] = (slip[k] != 0.0 ? curve / std::abs(slip[k]) : slope[k]) / normal_force[k];
+  }
 }
 
 bool EhlTraction::IsValid(std::string* error) const {

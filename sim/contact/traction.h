@@ -36,20 +36,49 @@ struct EhlTraction {
   // mu(s) for slide-to-roll ratio s (the sign is ignored).
   double Coefficient(double slide_to_roll) const;
 
-  // Tangential force (along the slip direction's axis; opposes `slip_speed`) for one explicit
-  // step of a contact carrying `normal_force` (N) with slip speed u_1 - u_2 and entrainment
-  // speed u_e (m/s). u_e = 0 with slip counts as pure sliding (mu = Lambda). The force is at
-  // most tangential_mass |slip| / (2 dt) (kg, s): the part of the curve steeper than the step
-  // resolves (its viscous slope Lambda |F_n| / (s_0 u_e) can exceed m / dt) stops the slip
-  // within a step instead of overshooting it, so the update stays stable; the force never
-  // does positive work.
-  double Force(double normal_force,
-               double slip_speed,
-               double entrainment_speed,
-               double tangential_mass,
-               double dt) const;
+  // Secant of the traction curve at slip speed v: mu(|v| / u_e) |F_n| / |v| (N s/m); its limit
+  // v -> 0 is the viscous slope Lambda |F_n| / (s_0 u_e). An entrainment below 1e-6 m/s counts
+  // as 1e-6 m/s: pure sliding (mu = Lambda) for any slip above about 1e-8 m/s.
+  double Secant(double normal_force, double slip_speed, double entrainment_speed) const;
+  // The curve's force mu(|v| / u_e) |F_n| with the sign of v, and its slope dF/dv >= 0.
+  void CurveForce(double normal_force,
+                  double slip_speed,
+                  double entrainment_speed,
+                  double* force,
+                  double* slope) const;
 
   bool IsValid(std::string* error) const;
 };
+
+// The tangential forces of n <= kMaxImplicitContacts lubricated contacts that share a body (a
+// roller's race contacts) over one central-difference step, implicit in the slip.
+//   free_slip[k]: contact k's slip speed u_1 - u_2 at the end of the step without these forces
+//                 (every other force of the step applied);
+//   compliance:   n x n, row-major: the change of slip k over the step per unit force at
+//                 contact l (dt times the contacts' tangential mobility: the shared body's
+//                 translation and rotation, plus the counter body's on the diagonal);
+//   secant_guess[k]: in, the curve's secant per newton of normal force (s/m) to start from
+//                 (the last step's, where the slips change little from step to step; <= 0:
+//                 the secant at the free slip); out, the secant at the slip this step leaves;
+//   force[k]:     the force on the shared body along contact k's slip axis (opposes the slip).
+// The forces solve f_k = -F_k(free_slip_k + sum_l compliance_kl f_l), F_k contact k's curve
+// force mu(|v| / u_e) |F_n| sign(v): each force is the curve's at the slip it leaves after the
+// step (|f_k| <= Lambda |F_n|, f_k opposing that slip). Newton's method from the linear
+// solution with the guessed secants (exact where they are the curve's at the slips left: a
+// rolling roller from step to step), to |residual| <= 1e-3 |f_k| + 1e-9 Lambda |F_n|. Why implicit:
+// the curve's viscous slope (~1e4-1e5 N s/m for a loaded roller) is far steeper than m / dt, so a
+// force from the slip at the step's start has to be capped to stay stable, and a capped force lags
+// the other forces by a step: a rolling roller then creeps by about (other forces / m) dt, and the
+// film dissipates in proportion to the step. Implicit, the creep is the curve's (force / slope) at
+// any step, and the contacts of one roller do not overcorrect each other.
+inline constexpr int kMaxImplicitContacts = 4;
+void SolveImplicitTraction(const EhlTraction& law,
+                           int n,
+                           const double* normal_force,
+                           const double* free_slip,
+                           const double* entrainment_speed,
+                           const double* compliance,
+                           double* secant_guess,
+                           double* force);
 
 }  // namespace spallkit::sim::contact
