@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -316,8 +317,8 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   //    The hybrid's bound 6 (k_n + k_t) / m is the sum of the two, 1.8x in omega^2; the rigid
   //    ring's mass is large against the roller's, so the ring side does not limit.
   //    With friction.model = "ehl" the race contacts have no stick spring (the traction curve
-  //    of the slide-to-roll ratio, capped per step to what stops the slip, is stable at any
-  //    step): only the pocket walls' (k_c, and their stick springs 3.3 ratio k_c on the rim).
+  //    of the slide-to-roll ratio, implicit in the slip, is stable at any step): only the
+  //    pocket walls' (k_c, and their stick springs 3.3 ratio k_c on the rim).
   //  - the ring oscillators, with their damping.
   {
     const double kn = rollers_.bound_normal_stiffness();
@@ -331,8 +332,9 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
                              : 7.0 * ratio * kn + kc;
     const double omega = std::sqrt(std::max(3.0 * kn, k_rim) / m_min);
     const double zeta = options_.hybrid.contact_damping_ratio;
-    dt_stable_ =
-        options_.lumped.time_step_safety * 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta);
+    const double limit = 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta);
+    dt_stable_ = options_.lumped.time_step_safety * limit;
+    dt_spall_ = options_.lumped.spall_time_step_safety * limit;
   }
   if (!fit_.sensor_response.empty()) {
     for (auto& h : history_) h.assign(fit_.sensor_response[0][0].size(), 0.0);
@@ -346,10 +348,14 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
         dt_stable_,
         options_.lumped.time_step_safety * 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta));
   }
+  dt_spall_ = std::min(dt_spall_, dt_stable_);
 }
 
 void LumpedBearingModel::Step() {
-  const double dt = dt_stable_;
+  const double dt =
+      dt_spall_ < dt_stable_ && rollers_.SpallNearRace(options_.lumped.spall_step_margin_rad)
+          ? dt_spall_
+          : dt_stable_;
   race_.fx_ = race_.fy_ = 0.0;
   rollers_.Step(race_, time_, dt);
   // Ring: roller reactions, housing spring and damper at x^n, v^(n-1/2).
@@ -408,13 +414,16 @@ solver::SolverSummary LumpedBearingModel::Run(double end_time) {
     if (observer_) observer_();
   }
   const long first = step_;
+  double min_dt = std::numeric_limits<double>::infinity(), max_dt = 0.0;
   while (time_ < end_time) {
     Step();
+    min_dt = std::min(min_dt, dt_), max_dt = std::max(max_dt, dt_);
     if (observer_) observer_();
   }
   sum.steps = step_ - first;
   sum.time = time_;
-  sum.min_time_step = sum.max_time_step = sum.steps > 0 ? dt_ : 0.0;
+  sum.min_time_step = sum.steps > 0 ? min_dt : 0.0;
+  sum.max_time_step = sum.steps > 0 ? max_dt : 0.0;
   sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   sum.threads = 1;
   sum.energies = energies();
@@ -520,7 +529,8 @@ std::string LumpedBearingModel::Describe() const {
         "on the fitted housing): Palmgren K_c = "
      << r.contact_stiffness() / std::pow(1e3, 10.0 / 9.0) * 1e-3 << " kN/mm^(10/9), roller mass "
      << r.roller_mass(0) * 1e3 << " g, cage " << r.cage_mass() * 1e3 << " g, inner ring "
-     << r.shaft_mass() * 1e3 << " g; step " << dt_stable_ * 1e9 << " ns";
+     << r.shaft_mass() * 1e3 << " g; step " << dt_stable_ * 1e9 << " ns (" << dt_spall_ * 1e9
+     << " ns in spall passages)";
   os << "\nhousing fit (" << options_.lumped.fit_mesh_size_m * 1e3 << " mm FE housing, "
      << (fit_.fit_wall_s > 0 ? "computed in " : "cached");
   if (fit_.fit_wall_s > 0) os << fit_.fit_wall_s << " s";

@@ -128,7 +128,7 @@ class LumpedBearingModel : public BearingModel {
   RollerContacts rollers_;
   RigidOuterRace race_;
   std::function<void()> observer_;
-  double dt_stable_ = 0;
+  double dt_stable_ = 0, dt_spall_ = 0;  // step, and step in spall passages
   // State (checkpointed).
   double time_ = 0, dt_ = 0, dt_prev_ = 0;
   long step_ = 0;

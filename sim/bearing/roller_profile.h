@@ -51,6 +51,11 @@ class ProfileDirections {
   bool InSpall(double ux, double uy) const {
     return spalled_ && ux * axis_x_ + uy * axis_y_ > cos_half_;
   }
+  // Whether the direction (ux, uy) is within the spall's contact cone widened to the cosine
+  // `cos_widened` of its half-angle (see RollerContacts::SpallNearRace).
+  bool NearSpall(double ux, double uy, double cos_widened) const {
+    return spalled_ && ux * axis_x_ + uy * axis_y_ > cos_widened;
+  }
   // RollerProfile::SupportPoint for the direction (ux, uy).
   double SupportPoint(double ux, double uy, double* px, double* py) const;
   // RollerProfile::RimCorners.
