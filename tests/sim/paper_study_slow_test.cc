@@ -2,7 +2,7 @@
 // 0.005) the defective roller of every width scene slides and resumes rolling (its Fig. 9), while
 // a through-length spall (the paper's 2-D section) traps the rigid roller for good; and the
 // width / depth / count trends. Runs: 2 mm housing mesh, 2 ms speed ramp, 50 ms (80 ms at
-// 4000 rpm), statistics from 10 ms (1.6 cage revolutions at 6000 rpm). Slow: 12 runs. With the
+// 4000 rpm), statistics from 10 ms (1.6 cage revolutions at 6000 rpm). Slow: 16 runs. With the
 // lubricant traction law, a through-length spall rolls (the last test).
 #include <gtest/gtest.h>
 
@@ -137,19 +137,35 @@ TEST(PaperStudyTest, DepthChangesLittleAndMoreDefectiveRollersShakeMore) {
 }
 
 // The lubricant traction law (friction.model = "ehl") on the paper's through-length spall, the
-// spall starting sideways (angle 90 deg; starting on a race, the 2.27 mm roller is loose from
-// t = 0 and never spun up): the defective roller rolls through every passage, and the widest
-// spall shakes the bearing most (docs/PAPER.md, "Through-length spalls with lubricant traction";
-// measured: vibration 517 / 2293 m/s^2, x4.4; cage sliding ratio 0.56 / 1.01 %, x1.8).
+// spall starting sideways (angles 60 / 90 / 120 deg; starting on a race, the 2.27 mm roller is
+// loose from t = 0 and never spun up): the defective roller rolls through every passage, and the
+// widest spall shakes the bearing most and slides the cage more, on the mean of the three starts
+// (one 50 ms run's cage sliding ratio moves by +-25 % with its start; docs/PAPER.md, "Through-
+// length spalls with lubricant traction"; measured: vibration x4.6, cage sliding ratio x1.5).
 TEST(PaperStudyTest, EhlTractionRollsThroughLengthSpallsAndWiderSpallsShakeMore) {
-  const std::vector<std::string> ehl = {
-      "friction.model=ehl", "defects.0.length_mm=9", "defects.0.angle_deg=90"};
-  const PaperRun narrow = RunScene("width-0.46", ehl, 0.05);
-  const PaperRun wide = RunScene("width-2.27", ehl, 0.05);
-  EXPECT_GT(narrow.roller.rolling_fraction, 0.95);
-  EXPECT_GT(wide.roller.rolling_fraction, 0.95);
-  EXPECT_GT(wide.accel_rms, 3.0 * narrow.accel_rms);
-  EXPECT_GT(wide.slip_rms, 1.3 * narrow.slip_rms);
+  double accel[2] = {0, 0}, slip[2] = {0, 0};
+  const char* scenes[2] = {"width-0.46", "width-2.27"};
+  for (int w = 0; w < 2; ++w)
+    for (const char* angle : {"60", "90", "120"}) {
+      const PaperRun run = RunScene(scenes[w],
+                                    {"friction.model=ehl",
+                                     "defects.0.length_mm=9",
+                                     std::string("defects.0.angle_deg=") + angle},
+                                    0.05);
+      EXPECT_GT(run.roller.rolling_fraction, 0.95) << scenes[w] << " from " << angle << " deg";
+      accel[w] += run.accel_rms / 3, slip[w] += run.slip_rms / 3;
+    }
+  std::printf(
+      "mean of 3 starts: accel RMS %.1f / %.1f m/s^2 (x%.2f), cage slip RMS %.2f / %.2f %% "
+      "(x%.2f)\n",
+      accel[0],
+      accel[1],
+      accel[1] / accel[0],
+      slip[0],
+      slip[1],
+      slip[1] / slip[0]);
+  EXPECT_GT(accel[1], 3.0 * accel[0]);
+  EXPECT_GT(slip[1], 1.2 * slip[0]);
 }
 
 }  // namespace
