@@ -329,8 +329,10 @@ std::vector<LadderTrendResult> EvaluateTrends(const std::vector<LadderRun>& runs
         r.rms.push_back(run->metrics.rms);
       }
       if (trend.kind == LadderTrend::Kind::kIncreasing) {
-        r.holds = true;
-        for (size_t k = 1; k < r.rms.size(); ++k) r.holds = r.holds && r.rms[k] > r.rms[k - 1];
+        r.holds =
+            r.rms.size() >= 2 && r.rms.front() > 0 && r.rms.back() > flat_ratio * r.rms.front();
+        for (size_t k = 1; k < r.rms.size(); ++k)
+          r.holds = r.holds && r.rms[k] >= (1.0 - kTrendStepScatter) * r.rms[k - 1];
       } else {
         const auto [lo, hi] = std::minmax_element(r.rms.begin(), r.rms.end());
         r.holds = !r.rms.empty() && *lo > 0 && *hi / *lo <= flat_ratio;
