@@ -26,7 +26,10 @@ struct RecordInputOptions {
     bearing.Add(sub);
     sub.add_option("--rpm", rpm, "nominal shaft speed, rpm")->required();
     fs_option = sub.add_option("--fs", fs, "sample rate, Hz (overrides the file)");
-    sub.add_option("--channel", channel, "column name / 0-based data column, or HDF5 path");
+    sub.add_option("--channel",
+                   channel,
+                   "column name (its unit may be left off: accel_z for 'accel_z (m/s^2)') / "
+                   "0-based data column, or HDF5 path");
   }
 
   // Throws InputError for a speed or sample rate that is not a positive finite number.

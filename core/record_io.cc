@@ -43,6 +43,18 @@ std::string_view Unquote(std::string_view s) {
   return s;
 }
 
+// A column name without a trailing unit in parentheses or brackets: "accel_z (m/s^2)" ->
+// "accel_z".
+std::string_view WithoutUnit(std::string_view header) {
+  if (header.empty() || (header.back() != ')' && header.back() != ']')) return header;
+  const char open = header.back() == ')' ? '(' : '[';
+  const size_t at = header.rfind(open);
+  if (at == std::string_view::npos || at == 0) return header;
+  std::string_view stem = header.substr(0, at);
+  while (!stem.empty() && (stem.back() == ' ' || stem.back() == '\t')) stem.remove_suffix(1);
+  return stem.empty() ? header : stem;
+}
+
 std::string Lower(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -503,6 +515,17 @@ Record ParseCsvRecord(std::string_view text,
     }
     for (size_t k = 0; k < data_cols.size() && !found; ++k) {
       if (!headers.empty() && Lower(headers[data_cols[k]]) == Lower(channel)) found = k;
+    }
+    // The name without its unit: 'accel_z' for a column 'accel_z (m/s^2)' (spall simulate --csv
+    // writes units so) or 'accel_z [g]'; refused when two columns share the name.
+    for (size_t k = 0; k < data_cols.size() && !found && !headers.empty(); ++k) {
+      if (Lower(WithoutUnit(headers[data_cols[k]])) != Lower(channel)) continue;
+      for (size_t other = k + 1; other < data_cols.size(); ++other)
+        if (Lower(WithoutUnit(headers[data_cols[other]])) == Lower(channel))
+          throw InputError(name + ": channel '" + channel + "' names more than one column ('" +
+                           headers[data_cols[k]] + "', '" + headers[data_cols[other]] +
+                           "'); give the whole column name");
+      found = k;
     }
     if (!found && IsAllDigits(channel)) {
       size_t index = 0;

@@ -273,6 +273,26 @@ TEST_F(RecordTest, UnknownChannelAndIndexOutOfRange) {
   EXPECT_CONTAINS(ErrorOf(path, options), "is the time column");
 }
 
+// A channel may be named without the unit its column carries ('accel_z' for 'accel_z (m/s^2)',
+// as spall simulate --csv writes them, or 'DE [g]'), unless two columns share that name.
+TEST_F(RecordTest, ChannelNamedWithoutItsUnit) {
+  const std::string path =
+      Write("units.csv", "time (s),accel_y (m/s^2),accel_z (m/s^2),DE [g]\n0,1,2,3\n0.1,4,5,6\n");
+  RecordOptions options;
+  options.channel = "accel_z";
+  EXPECT_EQ(ReadRecord(path, options).samples, (std::vector<double>{2, 5}));
+  options.channel = "de";
+  EXPECT_EQ(ReadRecord(path, options).samples, (std::vector<double>{3, 6}));
+  options.channel = "accel_y (m/s^2)";
+  EXPECT_EQ(ReadRecord(path, options).samples, (std::vector<double>{1, 4}));
+  const std::string twice = Write("twice.csv", "time_s,a (g),a (m/s^2)\n0,1,2\n0.1,3,4\n");
+  options.channel = "a";
+  EXPECT_EQ(ErrorOf(twice, options),
+            twice +
+                ": channel 'a' names more than one column ('a (g)', 'a (m/s^2)'); give the "
+                "whole column name");
+}
+
 TEST_F(RecordTest, RowWithMissingOrExtraFields) {
   std::string path = Write("short.csv", "time_s,a,b\n0,1,2\n0.1,2\n");
   EXPECT_EQ(ErrorOf(path), path + ":3: 2 fields, expected 3 (as in the header)");
