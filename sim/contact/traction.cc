@@ -35,14 +35,35 @@ namespace {
 // Entrainment below this counts as pure sliding for any slip above about 1e-8 m/s (s_0 = 0.01):
 // the curve stays continuous for the implicit solve.
 constexpr double kMinEntrainment = 1e-6;
+
+// The curve at slip v for a contact of peak force Lambda |F_n| and 1 / (u_e s_0): the force
+// along v and its slope dF/dv. Below x = |v| / (u_e s_0) = 1e-2 the series (error < x^5 / 120)
+// spares the exponential (a rolling contact's creep).
+inline void CurveAt(double peak, double inverse_scale, double v, double* force, double* slope) {
+  const double x = std::abs(v) * inverse_scale;
+  double mu, decay;  // 1 - exp(-x), exp(-x)
+  if (x < 1e-2) {
+    const double tail = 1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0));
+    mu = x * tail;
+    decay = 1.0 - x * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
+  } else {
+    mu = -std::expm1(-x);
+    decay = 1.0 - mu;
+  }
+  *force = std::copysign(peak * mu, v);
+  *slope = peak * decay * inverse_scale;
+}
+
+double InverseScale(const EhlTraction& law, double entrainment_speed) {
+  return 1.0 / (std::max(std::abs(entrainment_speed), kMinEntrainment) * law.slide_roll_scale);
+}
 }  // namespace
 
 double EhlTraction::Secant(double normal_force, double slip_speed, double entrainment_speed) const {
-  const double v = std::abs(slip_speed);
-  const double scale = std::max(std::abs(entrainment_speed), kMinEntrainment) * slide_roll_scale;
-  const double x = v / scale, slope = limiting_coefficient * std::abs(normal_force) / scale;
-  // mu(x) / x; below x = 1e-2 the series (error < x^4 / 120 < 1e-10) spares the exponential
-  // (a rolling contact's creep).
+  const double inverse_scale = InverseScale(*this, entrainment_speed);
+  const double x = std::abs(slip_speed) * inverse_scale;
+  const double slope = limiting_coefficient * std::abs(normal_force) * inverse_scale;
+  // mu(x) / x, by the series below x = 1e-2 (as CurveAt).
   if (x < 1e-2) return slope * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
   return -slope * std::expm1(-x) / x;
 }
@@ -52,19 +73,11 @@ void EhlTraction::CurveForce(double normal_force,
                              double entrainment_speed,
                              double* force,
                              double* slope) const {
-  const double v = std::abs(slip_speed);
-  const double scale = std::max(std::abs(entrainment_speed), kMinEntrainment) * slide_roll_scale;
-  const double x = v / scale, peak = limiting_coefficient * std::abs(normal_force);
-  double mu, decay;  // 1 - exp(-x), exp(-x)
-  if (x < 1e-2) {
-    decay = 1.0 - x * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
-    mu = x * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
-  } else {
-    mu = -std::expm1(-x);
-    decay = 1.0 - mu;
-  }
-  *force = std::copysign(peak * mu, slip_speed);
-  *slope = peak * decay / scale;
+  CurveAt(limiting_coefficient * std::abs(normal_force),
+          InverseScale(*this, entrainment_speed),
+          slip_speed,
+          force,
+          slope);
 }
 
 namespace {
@@ -113,10 +126,10 @@ void SolveImplicitTraction(const EhlTraction& law,
                            double* secant_guess,
                            double* force) {
   constexpr int kN = kMaxImplicitContacts;
-  double cap[kN], inverse_cap[kN];
+  double cap[kN], inverse_scale[kN];
   for (int k = 0; k < n; ++k) {
     cap[k] = normal_force[k] > 0.0 ? law.limiting_coefficient * normal_force[k] : 0.0;
-    inverse_cap[k] = cap[k] > 0.0 ? 1.0 / cap[k] : 0.0;
+    inverse_scale[k] = InverseScale(law, entrainment_speed[k]);
   }
   // First guess, exact where the secants are the curve's at the slips the step leaves:
   // (D + A) f = -v_free, D = diag(1 / c_k), A the compliance. c_k: the last step's secant (a
@@ -129,10 +142,10 @@ void SolveImplicitTraction(const EhlTraction& law,
         a[k][k] = 1.0, b[k] = 0.0;
         continue;
       }
-      const double c = secant_guess[k] > 0.0
-                           ? secant_guess[k] * normal_force[k]
-                           : law.Secant(normal_force[k], free_slip[k], entrainment_speed[k]);
-      a[k][k] += 1.0 / c;
+      // 1 / c, c the guessed secant (kept per newton of normal force).
+      a[k][k] += secant_guess[k] > 0.0
+                     ? 1.0 / (secant_guess[k] * normal_force[k])
+                     : 1.0 / law.Secant(normal_force[k], free_slip[k], entrainment_speed[k]);
       b[k] = -free_slip[k];
     }
     SolveSmall(n, a, b, force);
@@ -144,8 +157,8 @@ void SolveImplicitTraction(const EhlTraction& law,
   // slip crosses its knee within the step.
   double slope[kN], residual[kN], slip[kN];
   bool converged = false;
+  // Sets converged; returns max |R_k| / cap_k when not converged (backtracking's measure).
   auto evaluate = [&](const double* f, double* r, double* dfdv, double* v) {
-    double worst = 0.0;
     converged = true;
     for (int k = 0; k < n; ++k) {
       v[k] = free_slip[k];
@@ -155,11 +168,14 @@ void SolveImplicitTraction(const EhlTraction& law,
       }
       for (int l = 0; l < n; ++l) v[k] += compliance[k * n + l] * f[l];
       double curve;
-      law.CurveForce(normal_force[k], v[k], entrainment_speed[k], &curve, &dfdv[k]);
+      CurveAt(cap[k], inverse_scale[k], v[k], &curve, &dfdv[k]);
       r[k] = f[k] + curve;
-      worst = std::max(worst, std::abs(r[k]) * inverse_cap[k]);
       converged = converged && std::abs(r[k]) <= 1e-3 * std::abs(f[k]) + 1e-9 * cap[k];
     }
+    double worst = 0.0;
+    if (!converged)
+      for (int k = 0; k < n; ++k)
+        if (cap[k] > 0) worst = std::max(worst, std::abs(r[k]) / cap[k]);
     return worst;
   };
   double worst = evaluate(force, residual, slope, slip);
@@ -193,7 +209,8 @@ void SolveImplicitTraction(const EhlTraction& law,
       continue;
     }
     const double curve = std::abs(residual[k] - force[k]);
-    secant_guess[k] = (slip[k] != 0.0 ? curve / std::abs(slip[k]) : slope[k]) / normal_force[k];
+    secant_guess[k] =
+        slip[k] != 0.0 ? curve / (std::abs(slip[k]) * normal_force[k]) : slope[k] / normal_force[k];
   }
 }
 
