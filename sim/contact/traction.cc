@@ -1,5 +1,6 @@
 #include "sim/contact/traction.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -81,10 +82,10 @@ void EhlTraction::CurveForce(double normal_force,
 }
 
 namespace {
-// Solves a x = b for n <= kMaxImplicitContacts (a and b are overwritten): one or two unknowns in
-// closed form (a roller's usual one or two lubricated contacts), more by elimination with
-// partial pivoting.
-void SolveSmall(int n, double a[][kMaxImplicitContacts], double* b, double* x) {
+// Solves a x = b for n <= kMaxImplicitContacts: one or two unknowns in closed form (a roller's
+// usual one or two lubricated contacts), more (a partial-length spall's two profiles on both
+// races) by Eigen's partial-pivoting LU.
+void SolveSmall(int n, const double a[][kMaxImplicitContacts], const double* b, double* x) {
   if (n == 1) {
     x[0] = b[0] / a[0][0];
     return;
@@ -95,25 +96,17 @@ void SolveSmall(int n, double a[][kMaxImplicitContacts], double* b, double* x) {
     x[1] = (a[0][0] * b[1] - a[1][0] * b[0]) * inverse_det;
     return;
   }
+  using Matrix = Eigen::
+      Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxImplicitContacts, kMaxImplicitContacts>;
+  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxImplicitContacts, 1>;
+  Matrix m(n, n);
+  Vector v(n);
   for (int k = 0; k < n; ++k) {
-    int p = k;
-    for (int i = k + 1; i < n; ++i)
-      if (std::abs(a[i][k]) > std::abs(a[p][k])) p = i;
-    if (p != k) {
-      for (int l = 0; l < n; ++l) std::swap(a[k][l], a[p][l]);
-      std::swap(b[k], b[p]);
-    }
-    for (int i = k + 1; i < n; ++i) {
-      const double r = a[i][k] / a[k][k];
-      for (int l = k; l < n; ++l) a[i][l] -= r * a[k][l];
-      b[i] -= r * b[k];
-    }
+    v(k) = b[k];
+    for (int l = 0; l < n; ++l) m(k, l) = a[k][l];
   }
-  for (int k = n - 1; k >= 0; --k) {
-    double v = b[k];
-    for (int l = k + 1; l < n; ++l) v -= a[k][l] * x[l];
-    x[k] = v / a[k][k];
-  }
+  const Vector solution = m.partialPivLu().solve(v);
+  for (int k = 0; k < n; ++k) x[k] = solution(k);
 }
 }  // namespace
 
@@ -135,7 +128,7 @@ void SolveImplicitTraction(const EhlTraction& law,
   // (D + A) f = -v_free, D = diag(1 / c_k), A the compliance. c_k: the last step's secant (a
   // rolling contact's slip changes little from step to step), else the secant at the free slip.
   {
-    double a[kN][kN], b[kN];
+    double a[kN][kN] = {}, b[kN] = {};
     for (int k = 0; k < n; ++k) {
       for (int l = 0; l < n; ++l) a[k][l] = cap[k] > 0 && cap[l] > 0 ? compliance[k * n + l] : 0.0;
       if (!(cap[k] > 0)) {  // no film load, no force

@@ -89,8 +89,8 @@ TEST(EhlTractionTest, ImplicitStepCreepsAtTheCurvesSlipAtAnyStep) {
 // Two contacts on one roller (a disc: tangential mobility 3 / m at each rim point, -1 / m
 // between opposite rim points) with a stiff curve: the joint solve gives forces that are each
 // the curve's at the slip left after the step (no contact overcorrects the other), in the
-// linear, knee and sliding parts of the curve, and a sliding roller's slips decay without
-// overshoot.
+// linear, knee and sliding parts of the curve, also for four contacts, and a sliding roller's
+// slips decay without overshoot.
 TEST(EhlTractionTest, ContactsSharingARollerAreSolvedTogether) {
   const EhlTraction t{.limiting_coefficient = 0.08, .slide_roll_scale = 0.01};
   const double q[2] = {3000.0, 2000.0}, ue[2] = {1.2, 1.2}, m = 2.3e-3, dt = 1e-6;
@@ -121,6 +121,39 @@ TEST(EhlTractionTest, ContactsSharingARollerAreSolvedTogether) {
     }
   }
   EXPECT_LT(std::max(v[0], v[1]), 1e-9);
+  // Four contacts (a partial-length spall: its spalled and intact profiles on both races, the
+  // two on one race sharing the roller's rim point), solved by LU: each force is still the
+  // curve's at the slip it leaves.
+  {
+    const double q4[4] = {2000.0, 1000.0, 1500.0, 500.0}, ue4[4] = {1.2, 1.2, 1.2, 1.2};
+    const double c = dt / m;
+    const double w4[16] = {3 * c + 1e-6,
+                           3 * c,
+                           -c,
+                           -c,
+                           3 * c,
+                           3 * c + 1e-6,
+                           -c,
+                           -c,
+                           -c,
+                           -c,
+                           3 * c + 2e-6,
+                           3 * c,
+                           -c,
+                           -c,
+                           3 * c,
+                           3 * c + 2e-6};
+    const double slips[4] = {2e-3, 2e-3, -1e-3, -1e-3};
+    double f4[4], s4[4] = {0, 0, 0, 0};
+    contact::SolveImplicitTraction(t, 4, q4, slips, ue4, w4, s4, f4);
+    for (int k = 0; k < 4; ++k) {
+      double after = slips[k];
+      for (int l = 0; l < 4; ++l) after += w4[4 * k + l] * f4[l];
+      double curve, slope;
+      t.CurveForce(q4[k], after, ue4[k], &curve, &slope);
+      EXPECT_NEAR(f4[k], -curve, 1e-3 * std::abs(f4[k]) + 1e-9 * 0.08 * q4[k]) << k;
+    }
+  }
   // An unloaded contact takes no force.
   const double unloaded[2] = {3000.0, 0.0}, slips[2] = {0.1, 0.1};
   double f[2], none[2] = {0.0, 0.0};
