@@ -185,8 +185,8 @@ RollerContacts::RollerContacts(const Scene& scene,
   outer_force_.assign(z, 0.0);
   inner_force_.assign(z, 0.0);
   cage_force_.assign(z, 0.0);
-  // Reduced masses of each roller with each counter body (normal; tangential with the roller's
-  // m/3 for a force on its rim), in Counter order.
+  // Inverse masses for the traction solve (SolveTraction): each roller's, and each counter
+  // body's for a tangential force, in Counter order.
   for (int j = 0; j < z; ++j) {
     inverse_roller_mass_.push_back(1.0 / roller_mass_[j]);
     inverse_roller_inertia_.push_back(1.0 / roller_inertia_[j]);
@@ -194,6 +194,8 @@ RollerContacts::RollerContacts(const Scene& scene,
   inverse_counter_mass_[0] = 1.0 / race_mass_;
   inverse_counter_mass_[1] = 1.0 / shaft_mass_;
   inverse_counter_mass_[2] = 1.0 / cage_mass_;
+  // Reduced masses of each roller with each counter body (normal; tangential with the roller's
+  // m/3 for a force on its rim), in Counter order.
   for (int j = 0; j < z; ++j)
     for (double m_counter : {race_mass_, shaft_mass_, cage_mass_}) {
       reduced_mass_.push_back(1.0 / (1.0 / roller_mass_[j] + 1.0 / m_counter));
