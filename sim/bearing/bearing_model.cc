@@ -22,6 +22,8 @@ bool LumpedOptions::IsValid(std::string* error) const {
     return fail("lumped model: spall_time_step_safety must be in (0, time_step_safety]");
   if (!(spall_step_margin_rad >= 0 && spall_step_margin_rad <= 1))
     return fail("lumped model: spall_step_margin_rad must be in [0, 1]");
+  if (!(spall_step_min_spin_ratio >= 0 && spall_step_min_spin_ratio <= 10))
+    return fail("lumped model: spall_step_min_spin_ratio must be in [0, 10]");
   if (!(sensor_response_s >= 0 && sensor_response_s <= 0.1))
     return fail("lumped model: sensor_response_s must be in [0, 0.1]");
   if (!(sensor_sample_hz >= 1e3 && sensor_sample_hz <= 1e6))

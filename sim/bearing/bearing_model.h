@@ -32,13 +32,17 @@ struct LumpedOptions {
   double fit_duration_s = 4e-3;
   double fit_damping_ratio = 0.7;
   // Stable-step safety on the roller contacts (the FE models use the solver's), and the safety
-  // during spall passages: while a spalled roller's spall faces a race within
-  // spall_step_margin_rad of roller rotation. The rim edges' contact and the exit impact lose
-  // energy as the step squared, most of the model's energy error, while the friction, slip and
-  // kinematics are converged at the larger step (docs/BEARING_MODEL.md, "The lumped model").
-  double time_step_safety = 0.7;
-  double spall_time_step_safety = 0.225;
-  double spall_step_margin_rad = 0.1;
+  // while the speed and load ramp up (t < twice the longer ramp: the rollers are spun up by
+  // sliding) and in spall passages (a spalled roller's spall faces a race within
+  // spall_step_margin_rad of roller rotation while it turns relative to its orbit faster than
+  // spall_step_min_spin_ratio x the shaft's speed). The ramps, the rim edges' contact and the
+  // exit impact lose energy as the step squared, nearly all the model's energy error, while
+  // the friction, slip and kinematics are converged at the larger step (docs/BEARING_MODEL.md,
+  // "The lumped model").
+  double time_step_safety = 0.9;
+  double spall_time_step_safety = 0.2;
+  double spall_step_margin_rad = 0.02;
+  double spall_step_min_spin_ratio = 0.1;
   // Sensor path: length of the FE housing's impulse responses the sensor channels convolve
   // the rollers' force with (e.g. 8e-3), and their sample rate. Off (0, the sensor reads the
   // rigid ring's motion times its static gain) by default: with it, a spalled roller's record

@@ -220,11 +220,16 @@ void RollerContacts::RollerCentre(int j, double* x, double* y) const {
   *y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
 }
 
-bool RollerContacts::SpallNearRace(double margin) const {
+bool RollerContacts::SpallNearRace(double margin, double min_relative_spin) const {
   for (int j = 0; j < num_rollers(); ++j) {
     if (!profiles_[j].spalled) continue;
-    const double cos_widened = std::cos(std::min(kPi, profiles_[j].ContactHalfAngle() + margin));
     const Body& b = rollers_[j];
+    // The spall turns past the race directions at the roller's spin relative to its orbit; a
+    // roller that does not (trapped on its spall corners, resting) has no passage to resolve.
+    const double r2 = b.x * b.x + b.y * b.y;
+    const double orbit = r2 > 0.0 ? (b.x * b.vy - b.y * b.vx) / r2 : 0.0;
+    if (std::abs(b.omega - orbit) < min_relative_spin) continue;
+    const double cos_widened = std::cos(std::min(kPi, profiles_[j].ContactHalfAngle() + margin));
     const double c = cos_[j], s = sin_[j];
     const double x = b.x - (c * centroid_x_[j] - s * centroid_y_[j]);
     const double y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);

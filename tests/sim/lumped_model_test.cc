@@ -334,32 +334,40 @@ TEST(LumpedModelTest, EnergyIsBalanced) {
 }
 
 // The step is LumpedOptions::time_step_safety of the stable one, and spall_time_step_safety of it
-// only while a spall faces a race (within 0.1 rad of roller rotation): on the paper scene (one
-// 1.38 mm spall, contact half-angle about 11 deg) that is about 2 x 2 x (11 + 6) / 360 of the time,
-// 19 % (measured 23 %); a healthy bearing never takes the short step.
-TEST(LumpedModelTest, TakesTheShortStepOnlyInSpallPassages) {
+// only while the speed and load ramp up (the first 10 ms of the paper scene: 10 % of a 0.1 s run)
+// and while a spall faces a race (within 0.02 rad of roller rotation) as it rolls through: on the
+// paper scene (one 1.38 mm spall, contact half-angle about 11 deg) that adds about
+// 2 x 2 x 11 / 360 of the time, 12 % (measured 13 %). A healthy bearing takes it in the ramps only,
+// and a spall trapped on the outer race (Coulomb friction at the paper's mu 0.01: the roller
+// turns with its orbit from its first passages on) hardly after them: over 0.3 s, where the
+// ramps are 3.3 % of the time (measured 6.7 %).
+TEST(LumpedModelTest, TakesTheShortStepOnlyInRampsAndSpallPassages) {
   const LumpedOptions defaults;
   const double ratio = defaults.spall_time_step_safety / defaults.time_step_safety;
-  for (bool spalled : {true, false}) {
-    std::vector<std::string> sets = {"run.duration_s=0.1", "friction.model=ehl"};
-    if (!spalled) sets.push_back("defects=[]");
+  struct Case {
+    std::vector<std::string> sets;
+    double duration, low, high;  // bounds on the fraction of the time at the short step
+  };
+  const std::vector<Case> cases = {{{"friction.model=ehl"}, 0.1, 0.15, 0.35},
+                                   {{"friction.model=ehl", "defects=[]"}, 0.1, 0.09, 0.11},
+                                   {{"friction.model=coulomb"}, 0.3, 0.03, 0.10}};
+  for (const Case& c : cases) {
+    std::vector<std::string> sets = c.sets;
+    sets.push_back("run.duration_s=" + std::to_string(c.duration));
     Simulation sim(LumpedScene(sets), {});
     const SimulationSummary s = sim.Run();
     ASSERT_TRUE(s.completed);
-    if (!spalled) {
-      EXPECT_DOUBLE_EQ(s.min_time_step, s.max_time_step);
-      continue;
-    }
     EXPECT_NEAR(s.min_time_step / s.max_time_step, ratio, 1e-12);
     // steps = T ((1 - f) / dt + f / dt_short): the fraction f of the time at the short step.
-    const double t = 0.1, dt = s.max_time_step, dt_short = s.min_time_step;
+    const double t = c.duration, dt = s.max_time_step, dt_short = s.min_time_step;
     const double f = (s.steps * dt / t - 1.0) / (dt / dt_short - 1.0);
-    std::printf("short step %.1f ns on %.1f %% of the time (step %.1f ns)\n",
+    std::printf("%s: short step %.1f ns on %.1f %% of the time (step %.1f ns)\n",
+                c.sets.back().c_str(),
                 dt_short * 1e9,
                 100 * f,
                 dt * 1e9);
-    EXPECT_GT(f, 0.10);
-    EXPECT_LT(f, 0.30);
+    EXPECT_GT(f, c.low) << c.sets.back();
+    EXPECT_LT(f, c.high) << c.sets.back();
   }
 }
 
