@@ -1,0 +1,70 @@
+#!/usr/bin/env python3
+"""Chooses the count fit's temperatures (CountFitOptions::temperature_cage / _sidebands) on a
+tuning set, as docs/IDENTIFY.md ("Temperatures") describes: the pair that maximises the mean log
+probability of the true defective-roller count over the records with a roller signature, from
+the per-K log evidences that `spall identify-check --csv` writes.
+
+    spall identify-check runs/identify/tune --channel /signals/accel_z --sensor-angle-deg 90 \\
+        --snr-db inf,10,0 --csv tune.csv
+    python3 scripts/choose_temperatures.py tune.csv [--check report.csv]
+
+--check prints the same score on another set (e.g. the report set) at the chosen pair and at
+the current defaults, without using it for the choice. Needs numpy.
+"""
+import argparse
+import csv
+import math
+import sys
+
+import numpy as np
+
+CURRENT = (7.0, 65.0)  # identify/count_fit.h
+GRID = list(range(1, 10)) + list(range(10, 60, 2)) + list(range(60, 201, 5))
+
+
+def load(path):
+    """(true count, ln Z_A per K, ln Z_B per K) of every row with a roller signature."""
+    rows = []
+    with open(path, newline="") as f:
+        for r in csv.DictReader(f):
+            if not r["log_evidence_cage"]:
+                continue
+            a = np.array([float(x) for x in r["log_evidence_cage"].split(";") if x])
+            b = np.array([float(x) for x in r["log_evidence_sidebands"].split(";") if x])
+            rows.append((int(r["true_count"]), a, b))
+    if not rows:
+        sys.exit(f"{path}: no row with log evidences (run spall identify-check with --csv)")
+    return rows
+
+
+def mean_log_p(rows, t_a, t_b, floor=-50.0):
+    """Mean ln P(true K) with P(K) proportional to exp(ln Z_A / t_a + ln Z_B / t_b)."""
+    total = 0.0
+    for k, a, b in rows:
+        z = a / t_a + b / t_b
+        finite = z[np.isfinite(z)]
+        top = finite.max()
+        log_norm = top + math.log(np.exp(finite - top).sum())
+        lp = z[k] - log_norm if k < len(z) and np.isfinite(z[k]) else floor
+        total += max(lp, floor)
+    return total / len(rows)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("tune_csv")
+    p.add_argument("--check", help="another set's CSV, scored but not used for the choice")
+    args = p.parse_args()
+    tune = load(args.tune_csv)
+    best = max((mean_log_p(tune, a, b), a, b) for a in GRID for b in GRID)
+    print(f"tuning set: {len(tune)} records with a roller signature")
+    print(f"chosen: T_A {best[1]}, T_B {best[2]}: mean ln P(true K) {best[0]:.3f} "
+          f"(current {CURRENT[0]:g}, {CURRENT[1]:g}: {mean_log_p(tune, *CURRENT):.3f})")
+    if args.check:
+        other = load(args.check)
+        print(f"check set: {len(other)} records; chosen {mean_log_p(other, best[1], best[2]):.3f}, "
+              f"current {mean_log_p(other, *CURRENT):.3f}")
+
+
+if __name__ == "__main__":
+    main()
