@@ -220,6 +220,12 @@ void RollerContacts::RollerCentre(int j, double* x, double* y) const {
   *y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
 }
 
+void RollerContacts::CircleCentre(int j, double* x, double* y) const {
+  const Body& b = rollers_[j];
+  *x = b.x - (cos_[j] * centroid_x_[j] - sin_[j] * centroid_y_[j]);
+  *y = b.y - (sin_[j] * centroid_x_[j] + cos_[j] * centroid_y_[j]);
+}
+
 bool RollerContacts::SpallNearRace(double margin, double min_relative_spin) const {
   for (int j = 0; j < num_rollers(); ++j) {
     if (!profiles_[j].spalled) continue;
@@ -229,10 +235,16 @@ bool RollerContacts::SpallNearRace(double margin, double min_relative_spin) cons
     const double r2 = b.x * b.x + b.y * b.y;
     const double orbit = r2 > 0.0 ? (b.x * b.vy - b.y * b.vx) / r2 : 0.0;
     if (std::abs(b.omega - orbit) < min_relative_spin) continue;
-    const double cos_widened = std::cos(std::min(kPi, profiles_[j].ContactHalfAngle() + margin));
+    if (!(widened_margin_ == margin)) {  // the cones' cosines, once per margin
+      widened_margin_ = margin;
+      widened_cos_.resize(profiles_.size());
+      for (size_t k = 0; k < profiles_.size(); ++k)
+        widened_cos_[k] = std::cos(std::min(kPi, profiles_[k].ContactHalfAngle() + margin));
+    }
+    const double cos_widened = widened_cos_[j];
     const double c = cos_[j], s = sin_[j];
-    const double x = b.x - (c * centroid_x_[j] - s * centroid_y_[j]);
-    const double y = b.y - (s * centroid_x_[j] + c * centroid_y_[j]);
+    double x, y;
+    CircleCentre(j, &x, &y);
     const double d_out = std::hypot(x, y);
     const double ex = shaft_.x - x, ey = shaft_.y - y, d_in = std::hypot(ex, ey);
     // Directions to the outer and the inner race in the roller's frame.
@@ -687,11 +699,7 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
   std::fill(fy_.begin(), fy_.end(), 0.0);
   std::fill(torque_.begin(), torque_.end(), 0.0);
   cage_cos_ = std::cos(cage_.angle), cage_sin_ = std::sin(cage_.angle);
-  for (int j = 0; j < num_rollers(); ++j) {
-    const Body& b = rollers_[j];
-    centre_x_[j] = b.x - (cos_[j] * centroid_x_[j] - sin_[j] * centroid_y_[j]);
-    centre_y_[j] = b.y - (sin_[j] * centroid_x_[j] + cos_[j] * centroid_y_[j]);
-  }
+  for (int j = 0; j < num_rollers(); ++j) CircleCentre(j, &centre_x_[j], &centre_y_[j]);
   for (int j = 0; j < num_rollers(); ++j) {
     const double f = spall_fraction_[j];
     outer_force_[j] = inner_force_[j] = 0.0;

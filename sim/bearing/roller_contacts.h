@@ -171,6 +171,9 @@ class RollerContacts {
 
  private:
   enum class Counter { kOuterRace, kShaft, kCage };
+  // Circle centre of roller j from its body and the kept cos_ / sin_ of its angle (the per-step
+  // form of RollerCentre).
+  void CircleCentre(int j, double* x, double* y) const;
   // model.start = "seated": how far the shaft is lowered (m, along the load) to touch the
   // first roller, the rollers already on the outer raceway.
   double SeatedShaftDrop() const;
@@ -308,6 +311,10 @@ class RollerContacts {
   double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
          cage_torque_ = 0;
   std::vector<double> fx_, fy_, torque_;  // per roller
+  // SpallNearRace's cosines of each spall's contact cone widened by widened_margin_ (derived
+  // from the profiles, computed on the first call with a margin).
+  mutable std::vector<double> widened_cos_;
+  mutable double widened_margin_ = std::numeric_limits<double>::quiet_NaN();
   TractionContact traction_[contact::kMaxImplicitContacts];
   int num_traction_ = 0;
   double cage_cos_ = 1, cage_sin_ = 0;  // of the cage's angle at x^n

@@ -37,16 +37,20 @@ namespace {
 // the curve stays continuous for the implicit solve.
 constexpr double kMinEntrainment = 1e-6;
 
+// (1 - exp(-x)) / x by its series, for x below kSeriesBound (error < x^4 / 120): spares the
+// exponential on a rolling contact's creep.
+constexpr double kSeriesBound = 1e-2;
+inline double SeriesTail(double x) { return 1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)); }
+
 // The curve at slip v for a contact of peak force Lambda |F_n| and 1 / (u_e s_0): the force
-// along v and its slope dF/dv. Below x = |v| / (u_e s_0) = 1e-2 the series (error < x^5 / 120)
-// spares the exponential (a rolling contact's creep).
+// along v and its slope dF/dv.
 inline void CurveAt(double peak, double inverse_scale, double v, double* force, double* slope) {
   const double x = std::abs(v) * inverse_scale;
   double mu, decay;  // 1 - exp(-x), exp(-x)
-  if (x < 1e-2) {
-    const double tail = 1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0));
+  if (x < kSeriesBound) {
+    const double tail = SeriesTail(x);
     mu = x * tail;
-    decay = 1.0 - x * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
+    decay = 1.0 - x * tail;
   } else {
     mu = -std::expm1(-x);
     decay = 1.0 - mu;
@@ -64,8 +68,8 @@ double EhlTraction::Secant(double normal_force, double slip_speed, double entrai
   const double inverse_scale = InverseScale(*this, entrainment_speed);
   const double x = std::abs(slip_speed) * inverse_scale;
   const double slope = limiting_coefficient * std::abs(normal_force) * inverse_scale;
-  // mu(x) / x, by the series below x = 1e-2 (as CurveAt).
-  if (x < 1e-2) return slope * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
+  // mu(x) / x.
+  if (x < kSeriesBound) return slope * SeriesTail(x);
   return -slope * std::expm1(-x) / x;
 }
 
