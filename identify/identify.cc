@@ -50,6 +50,8 @@ bool IdentifyOptions::IsValid(std::string* error) const {
   if (!(max_entry_power_ratio > 0)) return fail("identify: max_entry_power_ratio must be > 0");
   if (!(max_width_relative_half_interval > 0))
     return fail("identify: max_width_relative_half_interval must be > 0");
+  if (!(width_max_diameter_fraction > 0 && width_max_diameter_fraction <= 1))
+    return fail("identify: width_max_diameter_fraction must be in (0, 1]");
   return count.IsValid(error) && width.IsValid(error);
 }
 
@@ -61,6 +63,7 @@ IdentifyOptions SignalModelOptions() {
   o.width_calibration_scale = 1.0;
   o.width_calibration_relative_sd = 0.0;
   o.width_max_count = 1 << 20;
+  o.width_max_diameter_fraction = 0.8;
   return o;
 }
 
@@ -277,7 +280,14 @@ Identification Identify(const Record& record,
     id.width_low_m = to_width(wf.delay_low_s, scale * (1.0 + spread));
     id.width_high_m = to_width(wf.delay_high_s, scale * (1.0 - spread));
     const double half = 0.5 * (id.width_high_m - id.width_low_m);
-    if (half > options.max_width_relative_half_interval * id.width_m) {
+    const double widest = options.width_max_diameter_fraction * d;
+    if (id.width_m > widest) {
+      why = "width: not identifiable (the fit gives " + FormatNumber("%.2f", id.width_m * 1e3) +
+            " mm, wider than the calibration covers: " + FormatNumber("%.2f", widest * 1e3) +
+            " mm, " + FormatNumber("%.3g", options.width_max_diameter_fraction) +
+            " of the element diameter)";
+      id.width_m = id.width_low_m = id.width_high_m = 0.0;
+    } else if (half > options.max_width_relative_half_interval * id.width_m) {
       why = "width: not identifiable (90 % interval " + FormatNumber("%.2f", id.width_low_m * 1e3) +
             "-" + FormatNumber("%.2f", id.width_high_m * 1e3) + " mm is too wide)";
       id.width_m = id.width_low_m = id.width_high_m = 0.0;

@@ -70,6 +70,11 @@ struct IdentifyOptions {
   // exceeds this fraction of the zero-lag power is another roller's impact train, not an entry.
   double max_entry_power_ratio = 0.5;
   double max_width_relative_half_interval = 0.3;
+  // The widest spall the calibration covers, as a fraction of the element diameter: a fit beyond
+  // it extrapolates the calibration (or has locked onto another event) and is not stated. Default:
+  // the widest of the calibration set (2.5 mm on the N205EM's 6.5 mm roller,
+  // datasets/sweeps/identify-width.toml); SignalModelOptions(): the fit's own range (0.8).
+  double width_max_diameter_fraction = 2.5 / 6.5;
 
   bool IsValid(std::string* error) const;
 };

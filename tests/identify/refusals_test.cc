@@ -54,6 +54,30 @@ TEST(Refusals, WidthBelowTheResolutionIsNotStated) {
   EXPECT_EQ(id.width_m, 0.0);
 }
 
+// A width beyond the calibration's widest (IdentifyOptions::width_max_diameter_fraction) is not
+// stated: a 3.5 mm spall on the 6.5 mm roller (0.54 of it) of the synthetic signal model, whose
+// width relation is exact up to the fit's own 0.8, is stated there and refused with the
+// simulator calibration's 2.5 / 6.5; the count is stated either way.
+TEST(Refusals, WidthBeyondTheCalibrationIsNotStated) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(900, 15, {{0, 3.5, 30}}, 3));
+  IdentifyOptions o = SignalModelOptions();
+  const Identification within = IdentifyRecord(r, 900, 10000, o);
+  ASSERT_TRUE(within.width_identifiable) << within.BriefReport();
+  EXPECT_NEAR(within.width_m, 3.5e-3, 0.15 * 3.5e-3);
+  o.width_max_diameter_fraction = IdentifyOptions().width_max_diameter_fraction;
+  const Identification beyond = IdentifyRecord(r, 900, 10000, o);
+  EXPECT_TRUE(beyond.count_identifiable) << beyond.BriefReport();
+  EXPECT_FALSE(beyond.width_identifiable);
+  EXPECT_EQ(beyond.width_m, 0.0);
+  bool said = false;
+  for (const std::string& reason : beyond.reasons)
+    said = said || reason.find("wider than the calibration covers") != std::string::npos;
+  EXPECT_TRUE(said) << beyond.BriefReport();
+  o.width_max_diameter_fraction = 1.5;
+  std::string e;
+  EXPECT_FALSE(o.IsValid(&e));
+}
+
 // The diagnosis itself needs 4 cage revolutions; a stricter requirement refuses the count.
 TEST(Refusals, TooFewCageRevolutionsForACount) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0}}));  // 8.3 revolutions
