@@ -333,7 +333,11 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
     const double omega = std::sqrt(std::max(3.0 * kn, k_rim) / m_min);
     const double zeta = options_.hybrid.contact_damping_ratio;
     const double limit = 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta);
-    dt_stable_ = options_.lumped.time_step_safety * limit;
+    bool spalled = false;
+    for (int j = 0; j < rollers_.num_rollers(); ++j)
+      spalled = spalled || rollers_.profile(j).spalled;
+    safety_ = spalled ? options_.lumped.spalled_time_step_safety : options_.lumped.time_step_safety;
+    dt_stable_ = safety_ * limit;
     dt_spall_ = options_.lumped.spall_time_step_safety * limit;
   }
   if (!fit_.sensor_response.empty()) {
@@ -344,22 +348,33 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   for (int d = 0; d < 2; ++d) {
     const double omega = std::sqrt(fit_.stiffness[d] / fit_.mass[d]);
     const double zeta = fit_.damping[d] / (2.0 * fit_.mass[d] * omega);
-    dt_stable_ = std::min(
-        dt_stable_,
-        options_.lumped.time_step_safety * 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta));
+    dt_stable_ = std::min(dt_stable_, safety_ * 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta));
   }
   dt_spall_ = std::min(dt_spall_, dt_stable_);
+  const int z = rollers_.num_rollers();
+  spall_min_load_ =
+      options_.lumped.spall_step_min_load_fraction * std::abs(scene_.operation.radial_load_n) / z;
+  loaded_passage_.assign(z, 0.0);
 }
 
 void LumpedBearingModel::Step() {
   // The short step while the speed and load ramp up (the rollers are spun up by sliding) and
-  // in spall passages: where the energy error is made (docs/BEARING_MODEL.md).
+  // in loaded spall passages, where the energy error is made (docs/BEARING_MODEL.md): a passage
+  // counts from the moment in it the roller carries spall_min_load_ (the last step's loads) to
+  // its end, and the short step lingers after it while its impacts ring down.
   const LumpedOptions& lo = options_.lumped;
   const double ramps = 2.0 * std::max(scene_.operation.ramp_s, scene_.operation.load_ramp_s);
-  const bool refine =
-      time_ < ramps ||
-      rollers_.SpallNearRace(lo.spall_step_margin_rad,
-                             lo.spall_step_min_spin_ratio * std::abs(rollers_.ShaftSpeed(time_)));
+  const double min_spin = lo.spall_step_min_spin_ratio * std::abs(rollers_.ShaftSpeed(time_));
+  for (int j = 0; j < rollers_.num_rollers(); ++j) {
+    if (!rollers_.SpallNearRace(j, lo.spall_step_margin_rad, min_spin)) {
+      loaded_passage_[j] = 0.0;
+      continue;
+    }
+    if (rollers_.OuterForce(j) + rollers_.InnerForce(j) >= spall_min_load_)
+      loaded_passage_[j] = 1.0;
+    if (loaded_passage_[j] > 0.0) short_step_until_ = time_ + lo.spall_step_linger_s;
+  }
+  const bool refine = time_ < ramps || time_ < short_step_until_;
   const double dt = refine ? dt_spall_ : dt_stable_;
   race_.fx_ = race_.fy_ = 0.0;
   rollers_.Step(race_, time_, dt);
@@ -486,13 +501,14 @@ std::string LumpedBearingModel::SaveState() const {
                    ring_v_old_[0],
                    ring_v_old_[1],
                    spring_half_,
-                   damping_half_})
+                   damping_half_,
+                   short_step_until_})
     out.Put(x);
   out.Put<std::int64_t>(step_);
   out.Put<std::uint8_t>(started_ ? 1 : 0);
   for (double x : {sample_force_[0], sample_force_[1], sample_time_}) out.Put(x);
   out.Put<std::int64_t>(history_pos_);
-  for (const auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_})
+  for (const auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_, &loaded_passage_})
     out.PutVector(*v);
   out.PutBytes(rollers_.SaveState());
   return out.Take();
@@ -512,13 +528,14 @@ void LumpedBearingModel::LoadState(const std::string& bytes) {
                     &ring_v_old_[0],
                     &ring_v_old_[1],
                     &spring_half_,
-                    &damping_half_})
+                    &damping_half_,
+                    &short_step_until_})
     *x = in.Get<double>();
   step_ = static_cast<long>(in.Get<std::int64_t>());
   started_ = in.Get<std::uint8_t>() != 0;
   for (double* x : {&sample_force_[0], &sample_force_[1], &sample_time_}) *x = in.Get<double>();
   history_pos_ = static_cast<long>(in.Get<std::int64_t>());
-  for (auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_})
+  for (auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_, &loaded_passage_})
     in.GetVectorInto(v, "lumped model sensor state");
   if (history_pos_ < 0 ||
       (history_pos_ > 0 && history_pos_ >= static_cast<long>(history_[0].size())))
@@ -535,7 +552,7 @@ std::string LumpedBearingModel::Describe() const {
      << r.contact_stiffness() / std::pow(1e3, 10.0 / 9.0) * 1e-3 << " kN/mm^(10/9), roller mass "
      << r.roller_mass(0) * 1e3 << " g, cage " << r.cage_mass() * 1e3 << " g, inner ring "
      << r.shaft_mass() * 1e3 << " g; step " << dt_stable_ * 1e9 << " ns (" << dt_spall_ * 1e9
-     << " ns in spall passages)";
+     << " ns in the ramps and loaded spall passages)";
   os << "\nhousing fit (" << options_.lumped.fit_mesh_size_m * 1e3 << " mm FE housing, "
      << (fit_.fit_wall_s > 0 ? "computed in " : "cached");
   if (fit_.fit_wall_s > 0) os << fit_.fit_wall_s << " s";

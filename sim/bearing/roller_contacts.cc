@@ -226,34 +226,30 @@ void RollerContacts::CircleCentre(int j, double* x, double* y) const {
   *y = b.y - (sin_[j] * centroid_x_[j] + cos_[j] * centroid_y_[j]);
 }
 
-bool RollerContacts::SpallNearRace(double margin, double min_relative_spin) const {
-  for (int j = 0; j < num_rollers(); ++j) {
-    if (!profiles_[j].spalled) continue;
-    const Body& b = rollers_[j];
-    // The spall turns past the race directions at the roller's spin relative to its orbit; a
-    // roller that does not (trapped on its spall corners, resting) has no passage to resolve.
-    const double r2 = b.x * b.x + b.y * b.y;
-    const double orbit = r2 > 0.0 ? (b.x * b.vy - b.y * b.vx) / r2 : 0.0;
-    if (std::abs(b.omega - orbit) < min_relative_spin) continue;
-    if (!(widened_margin_ == margin)) {  // the cones' cosines, once per margin
-      widened_margin_ = margin;
-      widened_cos_.resize(profiles_.size());
-      for (size_t k = 0; k < profiles_.size(); ++k)
-        widened_cos_[k] = std::cos(std::min(kPi, profiles_[k].ContactHalfAngle() + margin));
-    }
-    const double cos_widened = widened_cos_[j];
-    const double c = cos_[j], s = sin_[j];
-    double x, y;
-    CircleCentre(j, &x, &y);
-    const double d_out = std::hypot(x, y);
-    const double ex = shaft_.x - x, ey = shaft_.y - y, d_in = std::hypot(ex, ey);
-    // Directions to the outer and the inner race in the roller's frame.
-    const double out_x = x / d_out, out_y = y / d_out, in_x = ex / d_in, in_y = ey / d_in;
-    if (directions_[j].NearSpall(c * out_x + s * out_y, c * out_y - s * out_x, cos_widened) ||
-        directions_[j].NearSpall(c * in_x + s * in_y, c * in_y - s * in_x, cos_widened))
-      return true;
+bool RollerContacts::SpallNearRace(int j, double margin, double min_relative_spin) const {
+  if (!profiles_[j].spalled) return false;
+  const Body& b = rollers_[j];
+  // The spall turns past the race directions at the roller's spin relative to its orbit; a
+  // roller that does not (trapped on its spall corners, resting) has no passage to resolve.
+  const double r2 = b.x * b.x + b.y * b.y;
+  const double orbit = r2 > 0.0 ? (b.x * b.vy - b.y * b.vx) / r2 : 0.0;
+  if (std::abs(b.omega - orbit) < min_relative_spin) return false;
+  if (!(widened_margin_ == margin)) {  // the cones' cosines, once per margin
+    widened_margin_ = margin;
+    widened_cos_.resize(profiles_.size());
+    for (size_t k = 0; k < profiles_.size(); ++k)
+      widened_cos_[k] = std::cos(std::min(kPi, profiles_[k].ContactHalfAngle() + margin));
   }
-  return false;
+  const double cos_widened = widened_cos_[j];
+  const double c = cos_[j], s = sin_[j];
+  double x, y;
+  CircleCentre(j, &x, &y);
+  const double d_out = std::hypot(x, y);
+  const double ex = shaft_.x - x, ey = shaft_.y - y, d_in = std::hypot(ex, ey);
+  // Directions to the outer and the inner race in the roller's frame.
+  const double out_x = x / d_out, out_y = y / d_out, in_x = ex / d_in, in_y = ey / d_in;
+  return directions_[j].NearSpall(c * out_x + s * out_y, c * out_y - s * out_x, cos_widened) ||
+         directions_[j].NearSpall(c * in_x + s * in_y, c * in_y - s * in_x, cos_widened);
 }
 
 int RollerContacts::ContactCircles(

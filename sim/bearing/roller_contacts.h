@@ -157,10 +157,10 @@ class RollerContacts {
   double bound_normal_stiffness() const { return bound_normal_stiffness_; }
   // Circle centre of roller j (world).
   void RollerCentre(int j, double* x, double* y) const;
-  // Whether some spalled roller's spall faces a race within `margin` (rad) of roller rotation
-  // while the roller turns relative to its orbit faster than `min_relative_spin` (rad/s): a
-  // spall passage (edge contacts and the exit impact) under way or about to start.
-  bool SpallNearRace(double margin, double min_relative_spin) const;
+  // Whether roller j is spalled and its spall faces a race within `margin` (rad) of roller
+  // rotation while the roller turns relative to its orbit faster than `min_relative_spin`
+  // (rad/s): a spall passage (edge contacts and the exit impact) under way or about to start.
+  bool SpallNearRace(int j, double margin, double min_relative_spin) const;
   // Normal contact force magnitudes on roller j at the last step (N, whole section).
   double OuterForce(int j) const { return outer_force_[j]; }
   double InnerForce(int j) const { return inner_force_[j]; }
