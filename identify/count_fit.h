@@ -81,8 +81,8 @@ struct CountFitOptions {
   // hump shape and the sideband pattern miss details that grow with the number of lines), so the
   // temperatures are calibrated on simulated records of known count (docs/IDENTIFY.md,
   // "Calibration"): the values that maximise the mean log probability of the true count.
-  double temperature_cage = 7.0;
-  double temperature_sidebands = 65.0;
+  double temperature_cage = 5.0;
+  double temperature_sidebands = 28.0;
   // Feature B is evaluated only for configurations whose feature-A chi2 is within this of the
   // best (the others cannot matter; B is the costly part).
   double sideband_screen_chi2 = 60.0;

@@ -18,7 +18,7 @@ import sys
 
 import numpy as np
 
-CURRENT = (7.0, 65.0)  # identify/count_fit.h
+CURRENT = (5.0, 28.0)  # identify/count_fit.h
 GRID = list(range(1, 10)) + list(range(10, 60, 2)) + list(range(60, 201, 5))
 
 
