@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "core/bearing.h"
@@ -82,6 +83,11 @@ LadderMetrics Measure(const Scene& scene, const LadderRung& rung, double duratio
   Scene s = scene;
   s.model.fidelity = rung.fidelity;
   if (rung.fidelity != Fidelity::kLumped) s.mesh.size_m = s.mesh.contact_size_m = rung.mesh_m;
+  // The full FE meshes the spall itself: its contact zone is refined to what the spall needs
+  // (width >= 1.5, depth >= 1 element) where the rung's mesh is coarser.
+  if (rung.fidelity == Fidelity::kFe)
+    for (const Defect& d : s.defects)
+      s.mesh.contact_size_m = std::min(s.mesh.contact_size_m, std::min(d.width_m / 1.5, d.depth_m));
   s.run.duration_s = duration;
   s.solver.threads = 1;
   s.outputs = {Output::kContactForces, Output::kAcceleration, Output::kCage, Output::kRollers};
@@ -184,6 +190,21 @@ bool LadderOptions::Validate(std::string* error, size_t min_rungs) const {
     return false;
   };
   if (scenes.empty()) return fail("no scenes");
+  if (!stored_reference.empty()) {
+    if (min_rungs > 1) --min_rungs;  // the stored reference is the last rung
+    for (const auto& [name, scene] : scenes) {
+      const auto it = std::find_if(stored_reference.begin(),
+                                   stored_reference.end(),
+                                   [&](const LadderRun& r) { return r.scene == name; });
+      if (it == stored_reference.end()) return fail("the stored reference has no run of " + name);
+      if (it->rung.Label() != stored_reference.front().rung.Label())
+        return fail("the stored reference's runs are of different rungs");
+      // Runs end on the first step at or past the duration.
+      if (std::abs(it->metrics.simulated_s - duration_s) > 1e-3 * duration_s)
+        return fail("the stored reference ran " + std::to_string(it->metrics.simulated_s) +
+                    " s, the ladder " + std::to_string(duration_s) + " s");
+    }
+  }
   if (rungs.size() < min_rungs)
     return fail(min_rungs > 1 ? "needs at least two rungs (the last is the reference)"
                               : "needs a rung");
@@ -225,10 +246,27 @@ LadderSummary RunFidelityLadder(const LadderOptions& options,
   if (!options.Validate(&err)) throw InputError(err);
   LadderSummary out;
   out.runs = RunLadderScenes(options, progress);
-  const size_t nr = options.rungs.size();
+  std::vector<LadderRung> rungs = options.rungs;
+  if (!options.stored_reference.empty()) {
+    // Each scene's stored run after its own runs: the reference, the last rung.
+    rungs.push_back(options.stored_reference.front().rung);
+    std::vector<LadderRun> runs;
+    for (size_t k = 0; k < options.scenes.size(); ++k) {
+      runs.insert(runs.end(),
+                  out.runs.begin() + k * options.rungs.size(),
+                  out.runs.begin() + (k + 1) * options.rungs.size());
+      for (const LadderRun& r : options.stored_reference)
+        if (r.scene == options.scenes[k].first) {
+          runs.push_back(r);
+          break;
+        }
+    }
+    out.runs = std::move(runs);
+  }
+  const size_t nr = rungs.size();
   for (size_t r = 0; r < nr; ++r) {
     LadderRungSummary s;
-    s.rung = options.rungs[r];
+    s.rung = rungs[r];
     double wall = 0, simulated = 0;
     for (size_t k = 0; k < options.scenes.size(); ++k) {
       const LadderMetrics& m = out.runs[k * nr + r].metrics;
@@ -261,6 +299,101 @@ LadderSummary RunFidelityLadder(const LadderOptions& options,
     out.rungs.push_back(s);
   }
   return out;
+}
+
+namespace {
+
+// The stored metrics (LadderRunsToJson / LadderRunsFromJson), besides spall_drops and ses.
+const std::pair<const char*, double LadderMetrics::*> kStoredMetrics[] = {
+    {"f_b_hz", &LadderMetrics::f_b_hz},
+    {"f_c_hz", &LadderMetrics::f_c_hz},
+    {"cage_slip", &LadderMetrics::cage_slip},
+    {"roller_load_n", &LadderMetrics::roller_load_n},
+    {"rms", &LadderMetrics::rms},
+    {"kurtosis", &LadderMetrics::kurtosis},
+    {"signal_f_b_hz", &LadderMetrics::signal_f_b_hz},
+    {"signal_f_c_hz", &LadderMetrics::signal_f_c_hz},
+    {"harris_jones_load_n", &LadderMetrics::harris_jones_load_n},
+    {"wall_s", &LadderMetrics::wall_s},
+    {"simulated_s", &LadderMetrics::simulated_s},
+    {"energy_balance_error", &LadderMetrics::energy_balance_error},
+    {"spall_drop_s", &LadderMetrics::spall_drop_s},
+    {"spall_drop_geometric_s", &LadderMetrics::spall_drop_geometric_s},
+};
+
+}  // namespace
+
+nlohmann::json LadderRunsToJson(const std::vector<LadderRun>& runs, double duration_s) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const LadderRun& r : runs) {
+    nlohmann::json metrics = nlohmann::json::object();
+    for (const auto& [key, field] : kStoredMetrics) {
+      const double x = r.metrics.*field;
+      metrics[key] = std::isnan(x) ? nlohmann::json(nullptr) : nlohmann::json(x);  // NaN: null
+    }
+    metrics["spall_drops"] = r.metrics.spall_drops;
+    metrics["ses"] = r.metrics.ses;
+    out.push_back({{"scene", r.scene},
+                   {"fidelity", sim::FidelityName(r.rung.fidelity)},
+                   {"mesh_mm", r.rung.mesh_m * 1e3},
+                   {"metrics", metrics}});
+  }
+  return {{"duration_s", duration_s}, {"runs", out}};
+}
+
+std::vector<LadderRun> LadderRunsFromJson(const nlohmann::json& j, double* duration_s) {
+  auto at = [](const nlohmann::json& o,
+               const std::string& key,
+               const std::string& where) -> const nlohmann::json& {
+    if (!o.is_object() || !o.contains(key))
+      throw InputError("stored ladder runs: " + where + " has no \"" + key + "\"");
+    return o.at(key);
+  };
+  auto num = [&](const nlohmann::json& o, const std::string& key, const std::string& where) {
+    const nlohmann::json& v = at(o, key, where);
+    if (v.is_null()) return kNotMeasured;
+    if (!v.is_number())
+      throw InputError("stored ladder runs: " + where + "." + key + " must be a number");
+    return v.get<double>();
+  };
+  if (duration_s) *duration_s = num(j, "duration_s", "the file");
+  const nlohmann::json& list = at(j, "runs", "the file");
+  if (!list.is_array()) throw InputError("stored ladder runs: \"runs\" must be an array");
+  std::vector<LadderRun> runs;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string where = "runs[" + std::to_string(i) + "]";
+    const nlohmann::json& o = list[i];
+    LadderRun r;
+    const nlohmann::json& scene = at(o, "scene", where);
+    const nlohmann::json& fidelity = at(o, "fidelity", where);
+    if (!scene.is_string() || !fidelity.is_string())
+      throw InputError("stored ladder runs: " + where + ": scene and fidelity must be strings");
+    r.scene = scene.get<std::string>();
+    const std::string f = fidelity.get<std::string>();
+    if (f == "fe") {
+      r.rung.fidelity = Fidelity::kFe;
+    } else if (f == "hybrid") {
+      r.rung.fidelity = Fidelity::kHybrid;
+    } else if (f == "lumped") {
+      r.rung.fidelity = Fidelity::kLumped;
+    } else {
+      throw InputError("stored ladder runs: " + where + ".fidelity must be fe, hybrid or lumped");
+    }
+    r.rung.mesh_m = num(o, "mesh_mm", where) * 1e-3;
+    const nlohmann::json& mj = at(o, "metrics", where);
+    const std::string mw = where + ".metrics";
+    LadderMetrics& m = r.metrics;
+    for (const auto& [key, field] : kStoredMetrics) m.*field = num(mj, key, mw);
+    m.spall_drops = static_cast<int>(num(mj, "spall_drops", mw));
+    const nlohmann::json& ses = at(mj, "ses", mw);
+    if (!ses.is_array()) throw InputError("stored ladder runs: " + mw + ".ses must be an array");
+    for (const nlohmann::json& v : ses) {
+      if (!v.is_number()) throw InputError("stored ladder runs: " + mw + ".ses must hold numbers");
+      m.ses.push_back(v.get<double>());
+    }
+    runs.push_back(std::move(r));
+  }
+  return runs;
 }
 
 std::string LadderSummary::Table() const {
@@ -358,6 +491,15 @@ std::vector<std::string> LadderSceneSets() {
           "friction.model=ehl",
           "friction.mu_static=0.01",
           "friction.mu_dynamic=0.005"};
+}
+
+std::vector<std::string> FeLadderSceneSets() {
+  return {"model.fidelity=hybrid",
+          "friction.model=coulomb",
+          "friction.mu_static=0.15",
+          "friction.mu_dynamic=0.12",
+          "operation.speed_rpm=6000",
+          "operation.ramp_s=0.002"};
 }
 
 std::vector<LadderTrend> PaperTrends() {

@@ -17,6 +17,7 @@
 
 #include <functional>
 #include <limits>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -37,13 +38,20 @@ struct LadderRung {
   std::string Label() const;  // "lumped", "hybrid 2 mm", ...
 };
 
+struct LadderRun;
+
 struct LadderOptions {
   // Scenes by name and the scene each runs (already loaded, overrides applied).
   std::vector<std::pair<std::string, Scene>> scenes;
   // Coarse to fine; the last is the reference of the errors.
   std::vector<LadderRung> rungs;
   double duration_s = 0.15;  // simulated, every run
-  // A ladder needs min_rungs = 2 (the last is the errors' reference); RunLadderScenes, 1.
+  // A reference no benchmark run can afford (the full FE at 0.25 mm): one stored run per scene
+  // (same names, same rung, same duration), appended as the last rung instead of being run
+  // (datasets/reference; LadderRunsToJson / LadderRunsFromJson).
+  std::vector<LadderRun> stored_reference;
+  // A ladder needs min_rungs = 2 (the last is the errors' reference; a stored reference counts
+  // as one); RunLadderScenes, 1.
   bool Validate(std::string* error, size_t min_rungs = 2) const;
 };
 
@@ -89,6 +97,12 @@ struct LadderSummary {
   std::vector<LadderRungSummary> rungs;
   std::string Table() const;  // one line per rung
 };
+
+// Stored runs as JSON ({"duration_s", "runs": [{"scene", "fidelity", "mesh_mm", "metrics": {...,
+// "ses": [...]}}]}) and back; LadderRunsFromJson throws InputError naming the key that is missing
+// or of the wrong type.
+nlohmann::json LadderRunsToJson(const std::vector<LadderRun>& runs, double duration_s);
+std::vector<LadderRun> LadderRunsFromJson(const nlohmann::json& j, double* duration_s);
 
 // Runs every scene at every rung (one thread each), scene by scene. `progress` gets one line per
 // finished run. Throws InputError for invalid options (one rung is enough) or scenes.
@@ -137,6 +151,15 @@ std::string TrendTable(const std::vector<LadderTrendResult>& results);
 // coefficients with the lubricant traction law (loaded as hybrid, the law being for the
 // rigid-roller rungs; each rung then sets its own fidelity).
 std::vector<std::string> LadderSceneSets();
+// The full-FE sub-ladder (spall bench ladder --fe): the full FE has Coulomb friction only, and at
+// the paper's mu its spalled roller is trapped (docs/BEARING_MODEL.md, "Spall trapping"); these
+// sets take mu 0.15 / 0.12, above the 1.38 mm spall's tipping threshold w / 4r = 0.106, at the
+// width study's 6000 rpm with a 2 ms ramp, over kFeLadderDuration (the full FE at 0.5 mm costs
+// about 4 s per simulated ms). Its reference is the full FE at 0.25 mm, stored once
+// (datasets/reference/ladder-fe-0.25mm.json, --save-reference).
+inline constexpr double kFeLadderDuration = 0.02;
+inline const LadderRung kFeLadderReference = {Fidelity::kFe, 0.25e-3};
+std::vector<std::string> FeLadderSceneSets();
 // The paper's three trends (docs/PAPER.md): width and count up, depth flat; scene names are the
 // files of datasets/scenes (width-*, depth-*, rollers-*), without ".toml".
 std::vector<LadderTrend> PaperTrends();

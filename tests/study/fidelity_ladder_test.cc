@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,47 @@ TEST(FidelityLadderTest, ARungAgainstItselfHasNoErrorAndOptionsAreChecked) {
   EXPECT_THROW(RunFidelityLadder(o), InputError);
   o.rungs.clear();  // the scenes alone need one rung
   EXPECT_THROW(RunLadderScenes(o), InputError);
+}
+
+// A stored reference (the full FE at 0.25 mm of the --fe ladder, too dear to run each time) stands
+// for the last rung: stored to JSON and read back, a rung's run against its own stored copy has
+// no error, and a stored reference that lacks a scene, or ran another duration, is refused.
+TEST(FidelityLadderTest, AStoredReferenceIsTheLastRung) {
+  LadderOptions o;
+  o.scenes.emplace_back("paper",
+                        LumpedScene({"operation.speed_rpm=6000", "operation.ramp_s=0.002"}));
+  o.rungs = {{Fidelity::kLumped, 0.0}};
+  o.duration_s = 0.03;
+  const std::vector<LadderRun> runs = RunLadderScenes(o);
+  double duration = 0;
+  const std::vector<LadderRun> stored = LadderRunsFromJson(
+      nlohmann::json::parse(LadderRunsToJson(runs, o.duration_s).dump()), &duration);
+  EXPECT_EQ(duration, o.duration_s);
+  ASSERT_EQ(stored.size(), 1u);
+  EXPECT_EQ(stored[0].scene, "paper");
+  EXPECT_EQ(stored[0].metrics.f_b_hz, runs[0].metrics.f_b_hz);
+  EXPECT_EQ(stored[0].metrics.ses, runs[0].metrics.ses);
+  o.stored_reference = stored;
+  const LadderSummary s = RunFidelityLadder(o);  // one rung run, the stored one appended
+  ASSERT_EQ(s.rungs.size(), 2u);
+  ASSERT_EQ(s.runs.size(), 2u);
+  EXPECT_EQ(s.rungs[0].f_b, 0.0);
+  EXPECT_EQ(s.rungs[0].cage_slip, 0.0);
+  EXPECT_EQ(s.rungs[0].ses_correlation, 0.0);
+  o.stored_reference[0].scene = "healthy";
+  EXPECT_THROW(RunFidelityLadder(o), InputError);
+  o.stored_reference = stored;
+  o.duration_s = 0.02;
+  EXPECT_THROW(RunFidelityLadder(o), InputError);
+  nlohmann::json broken = LadderRunsToJson(runs, 0.03);
+  broken["runs"][0]["metrics"].erase("f_b_hz");
+  try {
+    LadderRunsFromJson(broken, &duration);
+    ADD_FAILURE() << "a run without f_b_hz was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("runs[0].metrics has no \"f_b_hz\""), std::string::npos)
+        << e.what();
+  }
 }
 
 // f_b and f_c from the signal are what spall diagnose measures on the run's vertical record cut
