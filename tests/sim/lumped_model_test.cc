@@ -401,9 +401,8 @@ TEST(LumpedModelTest, TakesTheShortStepOnlyInRampsAndSpallPassages) {
     Simulation sim(LumpedScene(sets), {});
     const SimulationSummary s = sim.Run();
     ASSERT_TRUE(s.completed);
-    EXPECT_NEAR(s.min_time_step / s.max_time_step,
-                defaults.spall_time_step_safety / c.base_safety,
-                1e-12);
+    EXPECT_NEAR(
+        s.min_time_step / s.max_time_step, defaults.spall_time_step_safety / c.base_safety, 1e-12);
     // steps = T ((1 - f) / dt + f / dt_short): the fraction f of the time at the short step.
     const double t = c.duration, dt = s.max_time_step, dt_short = s.min_time_step;
     const double f = (s.steps * dt / t - 1.0) / (dt / dt_short - 1.0);
