@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "sim/bearing/model_builder.h"
 #include "sim/bearing/raceway_kernel.h"
+#include "sim/solver/stable_step.h"
 
 namespace spallkit::sim {
 
@@ -320,6 +321,11 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   //    of the slide-to-roll ratio, implicit in the slip, is stable at any step): only the
   //    pocket walls' (k_c, and their stick springs 3.3 ratio k_c on the rim).
   //  - the ring oscillators, with their damping.
+  // A bearing with spalled rollers takes the smaller safety between its passages.
+  for (int j = 0; j < rollers_.num_rollers(); ++j)
+    if (rollers_.profile(j).spalled) spalled_.push_back(j);
+  const double safety = spalled_.empty() ? options_.lumped.time_step_safety
+                                         : options_.lumped.spalled_time_step_safety;
   {
     const double kn = rollers_.bound_normal_stiffness();
     const double ratio = options_.hybrid.tangential_stiffness_ratio;
@@ -332,12 +338,8 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
                              : 7.0 * ratio * kn + kc;
     const double omega = std::sqrt(std::max(3.0 * kn, k_rim) / m_min);
     const double zeta = options_.hybrid.contact_damping_ratio;
-    const double limit = 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta);
-    bool spalled = false;
-    for (int j = 0; j < rollers_.num_rollers(); ++j)
-      spalled = spalled || rollers_.profile(j).spalled;
-    safety_ = spalled ? options_.lumped.spalled_time_step_safety : options_.lumped.time_step_safety;
-    dt_stable_ = safety_ * limit;
+    const double limit = solver::DampedStableStep(omega, zeta);
+    dt_stable_ = safety * limit;
     dt_spall_ = options_.lumped.spall_time_step_safety * limit;
   }
   if (!fit_.sensor_response.empty()) {
@@ -348,13 +350,13 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   for (int d = 0; d < 2; ++d) {
     const double omega = std::sqrt(fit_.stiffness[d] / fit_.mass[d]);
     const double zeta = fit_.damping[d] / (2.0 * fit_.mass[d] * omega);
-    dt_stable_ = std::min(dt_stable_, safety_ * 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta));
+    dt_stable_ = std::min(dt_stable_, safety * solver::DampedStableStep(omega, zeta));
   }
   dt_spall_ = std::min(dt_spall_, dt_stable_);
   const int z = rollers_.num_rollers();
   spall_min_load_ =
       options_.lumped.spall_step_min_load_fraction * std::abs(scene_.operation.radial_load_n) / z;
-  loaded_passage_.assign(z, 0.0);
+  loaded_passage_.assign(z, 0);
 }
 
 void LumpedBearingModel::Step() {
@@ -364,15 +366,15 @@ void LumpedBearingModel::Step() {
   // its end, and the short step lingers after it while its impacts ring down.
   const LumpedOptions& lo = options_.lumped;
   const double ramps = 2.0 * std::max(scene_.operation.ramp_s, scene_.operation.load_ramp_s);
-  const double min_spin = lo.spall_step_min_spin_ratio * std::abs(rollers_.ShaftSpeed(time_));
-  for (int j = 0; j < rollers_.num_rollers(); ++j) {
+  const double min_spin =
+      spalled_.empty() ? 0.0 : lo.spall_step_min_spin_ratio * std::abs(rollers_.ShaftSpeed(time_));
+  for (int j : spalled_) {
     if (!rollers_.SpallNearRace(j, lo.spall_step_margin_rad, min_spin)) {
-      loaded_passage_[j] = 0.0;
+      loaded_passage_[j] = 0;
       continue;
     }
-    if (rollers_.OuterForce(j) + rollers_.InnerForce(j) >= spall_min_load_)
-      loaded_passage_[j] = 1.0;
-    if (loaded_passage_[j] > 0.0) short_step_until_ = time_ + lo.spall_step_linger_s;
+    if (rollers_.OuterForce(j) + rollers_.InnerForce(j) >= spall_min_load_) loaded_passage_[j] = 1;
+    if (loaded_passage_[j]) short_step_until_ = time_ + lo.spall_step_linger_s;
   }
   const bool refine = time_ < ramps || time_ < short_step_until_;
   const double dt = refine ? dt_spall_ : dt_stable_;
@@ -508,8 +510,9 @@ std::string LumpedBearingModel::SaveState() const {
   out.Put<std::uint8_t>(started_ ? 1 : 0);
   for (double x : {sample_force_[0], sample_force_[1], sample_time_}) out.Put(x);
   out.Put<std::int64_t>(history_pos_);
-  for (const auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_, &loaded_passage_})
+  for (const auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_})
     out.PutVector(*v);
+  out.PutVector(loaded_passage_);
   out.PutBytes(rollers_.SaveState());
   return out.Take();
 }
@@ -535,8 +538,9 @@ void LumpedBearingModel::LoadState(const std::string& bytes) {
   started_ = in.Get<std::uint8_t>() != 0;
   for (double* x : {&sample_force_[0], &sample_force_[1], &sample_time_}) *x = in.Get<double>();
   history_pos_ = static_cast<long>(in.Get<std::int64_t>());
-  for (auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_, &loaded_passage_})
+  for (auto* v : {&history_[0], &history_[1], &sensor_prev_, &sensor_last_})
     in.GetVectorInto(v, "lumped model sensor state");
+  in.GetVectorInto(&loaded_passage_, "lumped model spall passages");
   if (history_pos_ < 0 ||
       (history_pos_ > 0 && history_pos_ >= static_cast<long>(history_[0].size())))
     throw InputError("lumped model state: bad sensor history position");

@@ -29,6 +29,7 @@
 // contacts; no ring rotation.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -130,13 +131,13 @@ class LumpedBearingModel : public BearingModel {
   std::function<void()> observer_;
   double dt_stable_ = 0, dt_spall_ = 0;  // step, and step in spall passages
   double spall_min_load_ = 0;            // N: a passage counts from this roller load on
-  double safety_ = 0;  // step safety between passages (healthy or spalled bearing)
+  std::vector<int> spalled_;             // the spalled rollers
   // State (checkpointed).
   double time_ = 0, dt_ = 0, dt_prev_ = 0;
   // Per roller: whether its current spall passage has carried spall_min_load_ (1) or not (0);
   // and the time until which the short step is kept (the end of the last loaded passage plus
   // LumpedOptions::spall_step_linger_s).
-  std::vector<double> loaded_passage_;
+  std::vector<std::uint8_t> loaded_passage_;
   double short_step_until_ = -1.0;
   long step_ = 0;
   double spring_energy_ = 0, housing_damping_work_ = 0;

@@ -8,6 +8,7 @@
 #include "core/constants.h"
 #include "core/error.h"
 #include "sim/quasistatic/harris_jones.h"
+#include "sim/solver/stable_step.h"
 
 namespace spallkit::sim {
 namespace {
@@ -173,9 +174,8 @@ RollerContacts::RollerContacts(const Scene& scene,
     const double zeta = options_.contact_damping_ratio;
     bound_normal_stiffness_ = kn;
     const double k = kn * (1.0 + options_.tangential_stiffness_ratio);
-    auto limit = [zeta](double omega) { return 2.0 / omega * (std::sqrt(1 + zeta * zeta) - zeta); };
-    roller_dt_ = limit(std::sqrt(2.0 * k * 3.0 / m_min));
-    ring_dt_ = limit(std::sqrt(k * (3.0 / m_min + 1.0 / race_mass_)));
+    roller_dt_ = solver::DampedStableStep(std::sqrt(2.0 * k * 3.0 / m_min), zeta);
+    ring_dt_ = solver::DampedStableStep(std::sqrt(k * (3.0 / m_min + 1.0 / race_mass_)), zeta);
     dt_limit_ = kContactSafety * std::min(roller_dt_, ring_dt_);
   }
 

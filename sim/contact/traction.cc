@@ -59,18 +59,24 @@ inline void CurveAt(double peak, double inverse_scale, double v, double* force, 
   *slope = peak * decay * inverse_scale;
 }
 
+// The curve's secant F(v) / v at slip v, the same contact's.
+inline double SecantAt(double peak, double inverse_scale, double v) {
+  const double x = std::abs(v) * inverse_scale;
+  const double slope = peak * inverse_scale;
+  // mu(x) / x.
+  if (x < kSeriesBound) return slope * SeriesTail(x);
+  return -slope * std::expm1(-x) / x;
+}
+
 double InverseScale(const EhlTraction& law, double entrainment_speed) {
   return 1.0 / (std::max(std::abs(entrainment_speed), kMinEntrainment) * law.slide_roll_scale);
 }
 }  // namespace
 
 double EhlTraction::Secant(double normal_force, double slip_speed, double entrainment_speed) const {
-  const double inverse_scale = InverseScale(*this, entrainment_speed);
-  const double x = std::abs(slip_speed) * inverse_scale;
-  const double slope = limiting_coefficient * std::abs(normal_force) * inverse_scale;
-  // mu(x) / x.
-  if (x < kSeriesBound) return slope * SeriesTail(x);
-  return -slope * std::expm1(-x) / x;
+  return SecantAt(limiting_coefficient * std::abs(normal_force),
+                  InverseScale(*this, entrainment_speed),
+                  slip_speed);
 }
 
 void EhlTraction::CurveForce(double normal_force,
@@ -140,9 +146,8 @@ void SolveImplicitTraction(const EhlTraction& law,
         continue;
       }
       // 1 / c, c the guessed secant (kept per newton of normal force).
-      a[k][k] += secant_guess[k] > 0.0
-                     ? 1.0 / (secant_guess[k] * normal_force[k])
-                     : 1.0 / law.Secant(normal_force[k], free_slip[k], entrainment_speed[k]);
+      a[k][k] += secant_guess[k] > 0.0 ? 1.0 / (secant_guess[k] * normal_force[k])
+                                       : 1.0 / SecantAt(cap[k], inverse_scale[k], free_slip[k]);
       b[k] = -free_slip[k];
     }
     SolveSmall(n, a, b, force);
