@@ -6,11 +6,13 @@
 // largest roller load) and its [run] outputs (contact forces, acceleration, cage, rollers and
 // energy are made by every rung; the stress field of every part only by the full FE, which is
 // then chosen whatever the tolerance). The rungs' errors are the bounds `spall bench
-// ladder` measured against the finest model (MeasuredRungErrors); a rung is chosen when each of
-// its bounds is within the tolerance, cheapest first: lumped, hybrid, fe. "auto" is the scene
-// default.
+// ladder` measured against the finest model, for the scene's mesh (RungBoundsFor); a rung is
+// chosen when each of its bounds is within the tolerance, cheapest first: lumped, hybrid, fe.
+// Where none is, the rung whose bounds come closest (the smallest largest error-to-tolerance
+// ratio) runs and the reason says so. "auto" is the scene default.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,13 +25,27 @@ namespace spallkit::sim {
 // (cage_slip: absolute difference of the slip ratio), and its cost.
 struct RungErrors {
   Fidelity fidelity = Fidelity::kFe;
+  double mesh_mm = 0;  // the mesh it was measured on (0: the lumped model, which has none)
   double f_b = 0, f_c = 0, cage_slip = 0, roller_load = 0;
-  double wall_s_per_simulated_s = 0;  // one thread, paper scene, 1200 rpm
+  double wall_s_per_simulated_s = 0;  // one thread
+  // The finest run of its ladder (the full FE at 0.25 mm): nothing finer measures its errors,
+  // which are 0 here by definition, not by measurement.
+  bool reference = false;
 };
 
-// The ladder's measured bounds, cheapest rung first (the command that reproduces them is in
-// docs/PERFORMANCE.md).
+// The ladders' measured bounds, cheapest rung first: the lumped model and the hybrid at 2 mm
+// from the quick ladder (against hybrid 1 mm, the paper's friction with the lubricant traction
+// law), the full FE at 1 and 0.5 mm from the full-FE sub-ladder (against the full FE at 0.25 mm,
+// Coulomb friction), then that reference. The commands that reproduce them are in
+// docs/PERFORMANCE.md.
 const std::vector<RungErrors>& MeasuredRungErrors();
+
+// The bounds of a scene run at `fidelity` on the scene's mesh (mesh.size_mm), or nullopt where no
+// ladder measured that model on such a mesh: the lumped model's own; the hybrid's 2 mm bounds for
+// a mesh of 2 mm or finer; the full FE's at a measured mesh, between two measured meshes the
+// larger error of the two (its errors do not shrink monotonically with the mesh), at 0.25 mm or
+// finer the reference's. A mesh coarser than the coarsest measured one has no bound.
+std::optional<RungErrors> RungBoundsFor(const Scene& scene, Fidelity fidelity);
 
 struct FidelityChoice {
   Fidelity fidelity = Fidelity::kFe;
