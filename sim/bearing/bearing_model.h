@@ -75,6 +75,9 @@ struct BearingModelOptions {
   // Diagnostic: the solver keeps a work ledger per contact pair and constraint
   // (solver::SolverOptions::track_contributor_work; slower; FE models).
   bool track_contributor_work = false;
+  // The FE solver's per-step energy terms (solver::SolverOptions::energy_terms; the rigid
+  // rollers' are HybridOptions::energy_books). Off, the energies read NaN but the kinetic.
+  bool energy_books = true;
   // FE housing only (hybrid mesh, no rollers): the lumped model's housing fit.
   bool housing_only = false;
 

@@ -140,6 +140,7 @@ void ProbeSensorResponse(const Scene& fs, const BearingModelOptions& options, Ho
   const LumpedOptions& lo = options.lumped;
   BearingModelOptions o = options;
   o.housing_only = true;
+  o.energy_books = false;  // the fit reads motions only
   constexpr double kForce = 1000.0;
   const double h = 1.0 / lo.sensor_sample_hz, load_line = -0.5 * kPi;
   const int n = std::max(8, static_cast<int>(std::lround(lo.sensor_response_s / h)));
@@ -200,6 +201,7 @@ HousingFit ComputeHousingFit(const Scene& scene, const BearingModelOptions& opti
   for (int d = 0; d < 2; ++d) {
     BearingModelOptions o = options;
     o.housing_only = true;
+    o.energy_books = false;  // the fit reads motions only
     Scene s = fs;
     s.damping.ratio = lo.fit_damping_ratio;
     s.damping.reference_hz = 3000.0;
@@ -244,6 +246,7 @@ HousingFit ComputeHousingFit(const Scene& scene, const BearingModelOptions& opti
   FeBearingModel probe(fs, [&] {
     BearingModelOptions o = options;
     o.housing_only = true;
+    o.energy_books = false;  // the fit reads motions only
     return o;
   }());
   const auto& channels = probe.sensor_channels();

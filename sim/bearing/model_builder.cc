@@ -77,6 +77,7 @@ FeBearingModel::FeBearingModel(const Scene& scene, const BearingModelOptions& op
   so.damping_relative_to_rigid_motion = true;
   so.num_threads = scene_.solver.threads;
   so.track_contributor_work = options_.track_contributor_work;
+  so.energy_terms = options_.energy_books || options_.track_contributor_work;
   so.output_every_steps = 1;  // the recorder samples sensor velocities every step
   solver_ = std::make_unique<solver::ExplicitSolver>(mesh, std::move(sections), so);
 

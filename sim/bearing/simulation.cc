@@ -54,12 +54,13 @@ std::string SimulationSummary::BriefReport() const {
 Simulation::Simulation(const Scene& scene, SimulationOptions options)
     : options_(std::move(options)) {
   FidelityChoice choice;
-  // Skip what is not needed: the rigid-roller models keep their per-step energy books only
-  // when the energy output or the energy guard reads them.
+  // Skip what is not needed: every model keeps its per-step energy terms (the FE solver's and
+  // the rigid rollers') only when the energy output, the energy guard or the ledger reads them.
   BearingModelOptions model_options = options_.model;
-  const bool energy_read =
-      Asks(scene.outputs, Output::kEnergy) || scene.solver.max_energy_error_percent > 0.0;
-  if (!energy_read) model_options.hybrid.energy_books = false;
+  const bool energy_read = Asks(scene.outputs, Output::kEnergy) ||
+                           scene.solver.max_energy_error_percent > 0.0 ||
+                           model_options.track_contributor_work;
+  if (!energy_read) model_options.hybrid.energy_books = model_options.energy_books = false;
   model_ = MakeBearingModel(WithChosenFidelity(scene, &choice), model_options);
   fidelity_reason_ = choice.reason;
   RecorderOptions ro;

@@ -114,7 +114,7 @@ void QuadElements::AddLumpedMass(NodalState* s) const {
 // (the stable step is reduced as max (c/L_e)^2, the square root is taken once per pass, which
 // also keeps std::sqrt's errno out of the loop), one division per element (the three
 // denominators 2A(x^(n-1/2)), 2A(x^n) and 1 + q^2 share one reciprocal), no branches.
-template <bool kStiffDamp>
+template <bool kStiffDamp, bool kEnergy>
 double QuadElements::BlockKernel(
     const Block& b, const NodalState& s, double h, double* e_int, double* e_hg, double* e_damp) {
   const Section& sec = sections_[b.part];
@@ -201,7 +201,9 @@ double QuadElements::BlockKernel(
     sxx[e] = n_xx, syy[e] = n_yy, sxy[e] = n_xy;
     szz[e] += lam_z * tr;
     const double area_m = 0.5 * two_am;
-    dint += t * area_m * (0.5 * (rxx + n_xx) * dxx + 0.5 * (ryy + n_yy) * dyy + (rxy + n_xy) * dxy);
+    if constexpr (kEnergy)
+      dint +=
+          t * area_m * (0.5 * (rxx + n_xx) * dxx + 0.5 * (ryy + n_yy) * dyy + (rxy + n_xy) * dxy);
 
     // --- Stable step on the current geometry: (c / L_e)^2 = c^2 lmax / A^2.
     min_area = Min(min_area, two_a > 0.0 ? two_a : -1.0);  // NaN counts as inverted
@@ -221,6 +223,8 @@ double QuadElements::BlockKernel(
       const double sv_yy = beta * (lam * vtr + two_mu * vyy);
       const double sv_xy = beta * two_mu * vxy;
       fxx += sv_xx, fyy += sv_yy, fxy += sv_xy;
+      // Summed with or without kEnergy: dropping it lets the compiler fuse the viscous
+      // stress's products differently (FMA), and the forces would no longer be bit-identical.
       ddamp += t * area_m * h * (sv_xx * vxx + sv_yy * vyy + 2.0 * sv_xy * vxy);
     }
 
@@ -235,7 +239,7 @@ double QuadElements::BlockKernel(
     const double qxr = ca * qx0 - sa * qy0, qyr = sa * qx0 + ca * qy0;
     const double qxn = qxr + kappa_h * qdx, qyn = qyr + kappa_h * qdy;
     qxa[e] = qxn, qya[e] = qyn;
-    dhg += 0.5 * h * ((qxr + qxn) * qdx + (qyr + qyn) * qdy);
+    if constexpr (kEnergy) dhg += 0.5 * h * ((qxr + qxn) * qdx + (qyr + qyn) * qdy);
     const double gm1 = 0.25 * (1.0 - g1), gm2 = 0.25 * (-1.0 - g2);
     const double gm3 = 0.25 * (1.0 + g1), gm4 = 0.25 * (-1.0 + g2);
 
@@ -283,11 +287,16 @@ double QuadElements::StableStep(const NodalState& s) const {
 // The element kernel is inlined here once per instruction set (core/multiversion.h).
 SPALLKIT_MULTIVERSION
 void QuadElements::ComputeBlock(int k, const NodalState& s, double dt_prev) {
-  block_inv_dt_[k] =
-      beta_ > 0.0 ? BlockKernel<true>(
-                        blocks_[k], s, dt_prev, &block_int_[k], &block_hg_[k], &block_damp_[k])
-                  : BlockKernel<false>(
-                        blocks_[k], s, dt_prev, &block_int_[k], &block_hg_[k], &block_damp_[k]);
+  double* e_int = &block_int_[k];
+  double* e_hg = &block_hg_[k];
+  double* e_damp = &block_damp_[k];
+  const Block& b = blocks_[k];
+  if (energy_terms_)
+    block_inv_dt_[k] = beta_ > 0.0 ? BlockKernel<true, true>(b, s, dt_prev, e_int, e_hg, e_damp)
+                                   : BlockKernel<false, true>(b, s, dt_prev, e_int, e_hg, e_damp);
+  else
+    block_inv_dt_[k] = beta_ > 0.0 ? BlockKernel<true, false>(b, s, dt_prev, e_int, e_hg, e_damp)
+                                   : BlockKernel<false, false>(b, s, dt_prev, e_int, e_hg, e_damp);
 }
 
 // On one thread the loops run without an OpenMP region: libgomp allocates a team for every
@@ -365,16 +374,28 @@ double SumBlocks(const std::vector<double>& v) {
 }
 }  // namespace
 
-double QuadElements::InternalEnergy() const { return SumBlocks(block_int_); }
-double QuadElements::HourglassEnergy() const { return SumBlocks(block_hg_); }
-double QuadElements::DampingEnergy() const { return SumBlocks(block_damp_); }
+namespace {
+constexpr double kNotKept = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
+
+double QuadElements::InternalEnergy() const {
+  return energy_terms_ ? SumBlocks(block_int_) : kNotKept;
+}
+double QuadElements::HourglassEnergy() const {
+  return energy_terms_ ? SumBlocks(block_hg_) : kNotKept;
+}
+double QuadElements::DampingEnergy() const {
+  return energy_terms_ ? SumBlocks(block_damp_) : kNotKept;
+}
 double QuadElements::InternalEnergy(int part) const {
+  if (!energy_terms_) return kNotKept;
   double s = 0.0;
   for (size_t k = 0; k < blocks_.size(); ++k)
     if (blocks_[k].part == part) s += block_int_[k];
   return s;
 }
 double QuadElements::HourglassEnergy(int part) const {
+  if (!energy_terms_) return kNotKept;
   double s = 0.0;
   for (size_t k = 0; k < blocks_.size(); ++k)
     if (blocks_[k].part == part) s += block_hg_[k];

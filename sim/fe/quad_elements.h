@@ -55,6 +55,11 @@ class QuadElements {
   void set_stiffness_damping(double beta) { beta_ = beta; }
   double stiffness_damping() const { return beta_; }
 
+  // Keep the internal, hourglass and stiffness-damping energies (default). Off, the element
+  // pass skips their sums (stresses and forces are bit-identical) and the energies read NaN.
+  void set_energy_terms(bool on) { energy_terms_ = on; }
+  bool energy_terms() const { return energy_terms_; }
+
   // Element pass of step n. Updates stress and hourglass state with v^(n-1/2) over dt_prev
   // (0 on the first step), writes the corner forces for positions x^n, and returns the
   // smallest element stable step (without safety factor; reduced for stiffness damping).
@@ -106,7 +111,7 @@ class QuadElements {
   };
   // Returns the block's largest (c / L_e)^2 (not yet reduced for stiffness damping), or
   // +infinity if an element is inverted.
-  template <bool kStiffDamp>
+  template <bool kStiffDamp, bool kEnergy>
   double BlockKernel(
       const Block& b, const NodalState& s, double h, double* e_int, double* e_hg, double* e_damp);
 
@@ -124,6 +129,7 @@ class QuadElements {
   std::vector<double> block_int_, block_hg_, block_damp_;  // cumulative energies per block
   std::vector<double> block_inv_dt_, block_min_area_;      // per-pass scratch ((c/L_e)^2)
   double beta_ = 0.0;
+  bool energy_terms_ = true;
 };
 
 }  // namespace spallkit::sim::fe

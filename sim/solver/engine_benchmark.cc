@@ -89,6 +89,7 @@ std::unique_ptr<BenchmarkModel> MakeBenchmarkModel(const EngineBenchmarkOptions&
   sec.thickness = kThickness;
   SolverOptions opt;
   opt.num_threads = o.threads;
+  opt.energy_terms = o.energy_terms;
   m->solver = std::make_unique<ExplicitSolver>(
       m->mesh, std::vector<fe::Section>(m->mesh.num_parts(), sec), opt);
   // The ring turns slowly so the nodes move (prescribed bore rotation).

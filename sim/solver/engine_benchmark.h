@@ -18,6 +18,7 @@ struct EngineBenchmarkOptions {
   int threads = 1;
   int steps = 200;
   int rollers = 8;
+  bool energy_terms = true;  // SolverOptions::energy_terms
   bool IsValid(std::string* error) const;
 };
 

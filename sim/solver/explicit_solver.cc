@@ -65,6 +65,10 @@ bool SolverOptions::IsValid(std::string* error) const {
   if (!(output_interval >= 0.0)) return fail("solver: output_interval must be >= 0");
   if (!(max_energy_error >= 0.0)) return fail("solver: max_energy_error must be >= 0");
   if (num_threads < 0) return fail("solver: num_threads must be >= 0");
+  if (!energy_terms && max_energy_error > 0.0)
+    return fail("solver: max_energy_error needs energy_terms (the balance is not kept without)");
+  if (!energy_terms && track_contributor_work)
+    return fail("solver: track_contributor_work needs energy_terms");
   return true;
 }
 
@@ -101,6 +105,7 @@ ExplicitSolver::ExplicitSolver(const fe::Mesh& mesh,
   state_.Resize(nn);
   state_.x0 = mesh.x, state_.y0 = mesh.y, state_.x = mesh.x, state_.y = mesh.y;
   elements_.AddLumpedMass(&state_);
+  elements_.set_energy_terms(options_.energy_terms);
   node_part_.assign(nn, -1);
   for (int e = mesh.num_elements() - 1; e >= 0; --e)
     for (int id : mesh.quads[e]) node_part_[id] = mesh.element_part[e];
@@ -341,18 +346,33 @@ double ExplicitSolver::UpdateNodes(int c, bool gather, const UpdateConstants& k)
     const double* r = pr + 5 * p;
     const double r0 = rel * r[0], r1 = rel * r[1], r2 = rel * r[2], r3 = r[3], r4 = r[4];
     double run_work = 0.0;
+    if (k.energy) {
 #pragma omp simd reduction(+ : run_work)
-    for (int i = i0; i < i1; ++i) {
-      const double rvx = r0 - r2 * (y[i] - r4), rvy = r1 + r2 * (x[i] - r3);
-      const double s = dt_avg * inv_m[i];
-      const double ux0 = vx[i] - rvx, uy0 = vy[i] - rvy;
-      const double ux1 = (c_old * ux0 + s * fx[i]) * c_inv, uy1 = (c_old * uy0 + s * fy[i]) * c_inv;
-      const double vx1 = rvx + ux1, vy1 = rvy + uy1;
-      const double free = fixed[i] ? 0.0 : 1.0;  // constrained nodes: no damping work
-      run_work +=
-          free * w_scale * m[i] * ((ux0 + ux1) * (vx[i] + vx1) + (uy0 + uy1) * (vy[i] + vy1));
-      vx[i] = vx1, vy[i] = vy1;
-      x[i] += dt * vx1, y[i] += dt * vy1;
+      for (int i = i0; i < i1; ++i) {
+        const double rvx = r0 - r2 * (y[i] - r4), rvy = r1 + r2 * (x[i] - r3);
+        const double s = dt_avg * inv_m[i];
+        const double ux0 = vx[i] - rvx, uy0 = vy[i] - rvy;
+        const double ux1 = (c_old * ux0 + s * fx[i]) * c_inv;
+        const double uy1 = (c_old * uy0 + s * fy[i]) * c_inv;
+        const double vx1 = rvx + ux1, vy1 = rvy + uy1;
+        const double free = fixed[i] ? 0.0 : 1.0;  // constrained nodes: no damping work
+        run_work +=
+            free * w_scale * m[i] * ((ux0 + ux1) * (vx[i] + vx1) + (uy0 + uy1) * (vy[i] + vy1));
+        vx[i] = vx1, vy[i] = vy1;
+        x[i] += dt * vx1, y[i] += dt * vy1;
+      }
+    } else {  // the same update without the work (SolverOptions::energy_terms off)
+#pragma omp simd
+      for (int i = i0; i < i1; ++i) {
+        const double rvx = r0 - r2 * (y[i] - r4), rvy = r1 + r2 * (x[i] - r3);
+        const double s = dt_avg * inv_m[i];
+        const double ux0 = vx[i] - rvx, uy0 = vy[i] - rvy;
+        const double ux1 = (c_old * ux0 + s * fx[i]) * c_inv;
+        const double uy1 = (c_old * uy0 + s * fy[i]) * c_inv;
+        const double vx1 = rvx + ux1, vy1 = rvy + uy1;
+        vx[i] = vx1, vy[i] = vy1;
+        x[i] += dt * vx1, y[i] += dt * vy1;
+      }
     }
     work += run_work;
     i0 = i1;
@@ -445,7 +465,7 @@ void ExplicitSolver::Step() {
   k.dt_avg = 0.5 * (h + dt);
   const double ad = mass_damping_ * k.dt_avg * 0.5;
   k.c_old = 1.0 - ad, k.c_inv = 1.0 / (1.0 + ad);
-  k.damp = damp, k.relative = relative;
+  k.damp = damp, k.relative = relative, k.energy = options_.energy_terms;
   double* chunk_work = chunk_sums_.data();  // reuse scratch: one value per chunk
   if (threads_ > 1) {
 #pragma omp parallel for schedule(static) num_threads(threads_)
@@ -481,7 +501,9 @@ void ExplicitSolver::Step() {
 
 void ExplicitSolver::ApplyConstraints(double dt, double dt_avg, double t_half, double t_next) {
   fe::NodalState& s = state_;
+  const bool books = options_.energy_terms;
   auto node_work = [&](int id) {  // work of the constraint on node id over the step
+    if (!books) return 0.0;
     const double m = s.mass[id];
     const double ke = 0.5 * m *
                       (s.vx[id] * s.vx[id] + s.vy[id] * s.vy[id] - old_vx_[id] * old_vx_[id] -
@@ -603,6 +625,12 @@ Energies ExplicitSolver::energies() const {
         (rigid_states_[b].vx * rigid_states_[b].vx + rigid_states_[b].vy * rigid_states_[b].vy);
   e.initial_kinetic = initialized_ ? initial_kinetic_ : e.kinetic;
   e.initial_stored = initial_stored_;
+  if (!options_.energy_terms) {  // only the kinetic energy is kept
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    e.initial_stored = e.internal = e.hourglass = e.damping = e.contact = e.friction = nan;
+    e.external_loads = e.external = nan;
+    return e;
+  }
   e.internal = elements_.InternalEnergy();
   e.hourglass = elements_.HourglassEnergy();
   e.damping = damping_work_ + elements_.DampingEnergy();

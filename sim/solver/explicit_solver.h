@@ -104,6 +104,11 @@ struct SolverOptions {
   // constraint creates energy when the balance fails. Costs two copies of the nodal forces per
   // contributor per step: a diagnostic, off by default.
   bool track_contributor_work = false;
+  // Keep the per-step energy terms: element internal, hourglass and damping energy, mass-damping
+  // and constraint work (default). Off, the element and nodal passes skip those sums (positions
+  // and velocities are bit-identical) and energies() reads NaN for every term but the kinetic;
+  // max_energy_error and track_contributor_work need them on.
+  bool energy_terms = true;
 
   bool IsValid(std::string* error) const;
 };
@@ -181,7 +186,7 @@ class ExplicitSolver {
   void RigidMotionSums(int c);
   struct UpdateConstants {
     double dt = 0.0, dt_avg = 0.0, c_old = 1.0, c_inv = 1.0;
-    bool damp = false, relative = false;
+    bool damp = false, relative = false, energy = true;
   };
   void ElementPass(double h, bool rigid_sums, bool gather);
   double UpdateNodes(int c, bool gather, const UpdateConstants& k);

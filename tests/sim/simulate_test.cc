@@ -327,19 +327,20 @@ TEST(SimulateTest, OutputsNotAskedForAreNotWritten) {
   std::remove(o.output_path.c_str());
 }
 
-// Skip what is not needed: with neither the "energy" output nor the energy guard, the
-// rigid-roller models keep no energy books (the summary's balance is NaN and says so), and
-// every recorded signal is bit for bit what the run with the books gives. Either reader keeps
-// them.
+// Skip what is not needed: with neither the "energy" output nor the energy guard, no model
+// keeps energy books (the rigid rollers', the FE solver's element and nodal terms; the
+// summary's balance is NaN and says so), and every recorded signal is bit for bit what the run
+// with the books gives. Either reader keeps them.
 TEST(SimulateTest, EnergyBooksAreKeptOnlyWhenSomethingReadsThem) {
-  for (const char* fidelity : {"lumped", "hybrid"}) {
+  for (const char* fidelity : {"lumped", "hybrid", "fe"}) {
     SCOPED_TRACE(fidelity);
+    const bool fe = std::string(fidelity) == "fe";
     auto run = [&](const char* name, std::vector<std::string> extra) {
       std::vector<std::string> sets = {std::string("model.fidelity=") + fidelity,
                                        "mesh.size_mm=2.0",
                                        "operation.ramp_s=0.002",
-                                       "run.duration_s=0.004",
-                                       "friction.model=ehl"};
+                                       fe ? "run.duration_s=0.0005" : "run.duration_s=0.004",
+                                       fe ? "defects=[]" : "friction.model=ehl"};
       sets.insert(sets.end(), extra.begin(), extra.end());
       SimulationOptions o;
       o.output_path = TempPath(std::string(fidelity) + "_" + name + ".h5");

@@ -63,6 +63,38 @@ TEST(ExplicitSolver, BitIdenticalAcrossThreadCounts) {
   EXPECT_EQ(a->energies().damping, b->energies().damping);
 }
 
+// Without the energy terms (SolverOptions::energy_terms off) the element, damping and
+// constraint passes skip their sums: the motion is bit for bit the same, the kinetic energy is
+// still there, every other term reads NaN (so the balance does too), and what needs the terms
+// (the energy guard, the work ledger) is refused up front.
+TEST(ExplicitSolver, SkippingTheEnergyTermsLeavesTheMotionBitIdentical) {
+  const Model m;
+  auto a = Build(m, 1);
+  SolverOptions off;
+  off.energy_terms = false;
+  auto b = Build(m, 1, off);
+  for (int k = 0; k < 300; ++k) a->Step(), b->Step();
+  for (size_t i = 0; i < a->state().size(); ++i) {
+    ASSERT_EQ(a->state().x[i], b->state().x[i]) << i;
+    ASSERT_EQ(a->state().vy[i], b->state().vy[i]) << i;
+  }
+  const Energies ea = a->energies(), eb = b->energies();
+  EXPECT_EQ(ea.kinetic, eb.kinetic);
+  EXPECT_GT(ea.internal, 0.0);
+  EXPECT_GT(ea.damping, 0.0);
+  EXPECT_LT(ea.BalanceError(), 1e-2);
+  for (double v : {eb.internal, eb.hourglass, eb.damping, eb.external, eb.BalanceError()})
+    EXPECT_TRUE(std::isnan(v));
+  std::string err;
+  off.max_energy_error = 0.01;
+  EXPECT_FALSE(off.IsValid(&err));
+  EXPECT_NE(err.find("energy_terms"), std::string::npos) << err;
+  off.max_energy_error = 0.0;
+  off.track_contributor_work = true;
+  EXPECT_FALSE(off.IsValid(&err));
+  EXPECT_NE(err.find("energy_terms"), std::string::npos) << err;
+}
+
 TEST(ExplicitSolver, RestartFromCheckpointIsBitIdentical) {
   const Model m;
   auto full = Build(m, 1);
