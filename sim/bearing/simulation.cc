@@ -18,7 +18,11 @@
 namespace spallkit::sim {
 namespace {
 
-constexpr char kMagic[8] = {'S', 'P', 'K', 'S', 'I', 'M', '0', '1'};
+// Format 02: magic, the writing spallkit's version, the effective scene, the model's and the
+// recorder's state. 01 (no version) was written by older builds.
+constexpr char kMagic[8] = {'S', 'P', 'K', 'S', 'I', 'M', '0', '2'};
+constexpr char kMagicFormat01[8] = {'S', 'P', 'K', 'S', 'I', 'M', '0', '1'};
+constexpr char kStartAgain[] = "; run again without --resume";
 
 std::string ReadAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -79,6 +83,7 @@ Simulation::Simulation(const Scene& scene, SimulationOptions options)
 void Simulation::SaveCheckpoint(const std::string& path) const {
   CheckpointWriter out;
   for (char c : kMagic) out.Put(c);
+  out.PutBytes(SPALLKIT_VERSION);
   out.PutBytes(model_->scene().effective_toml);
   out.PutBytes(model_->SaveState());
   out.PutBytes(recorder_->SaveState());
@@ -87,9 +92,13 @@ void Simulation::SaveCheckpoint(const std::string& path) const {
 
 void Simulation::LoadCheckpoint(const std::string& path) {
   const std::string s = ReadAll(path);
+  if (s.size() >= sizeof kMagicFormat01 &&
+      std::memcmp(s.data(), kMagicFormat01, sizeof kMagicFormat01) == 0)
+    throw InputError(path + ": checkpoint written by an older spallkit (format 01)" + kStartAgain);
   if (s.size() < sizeof kMagic || std::memcmp(s.data(), kMagic, sizeof kMagic) != 0)
     throw InputError(path + ": not a spall simulate checkpoint");
   CheckpointReader in(std::string_view(s).substr(sizeof kMagic), path + ": checkpoint");
+  const std::string version = in.GetBytes();
   if (in.GetBytes() != model_->scene().effective_toml)
     throw InputError(path + ": checkpoint was written for a different scene (or --set values)");
   const std::string model_blob = in.GetBytes();
@@ -98,7 +107,10 @@ void Simulation::LoadCheckpoint(const std::string& path) {
     model_->LoadState(model_blob);
     recorder_->LoadState(recorder_blob);
   } catch (const InputError& e) {
-    throw InputError(path + ": " + e.what());
+    // The state layouts change between builds; say whose checkpoint it was.
+    const std::string writer =
+        version == SPALLKIT_VERSION ? "" : " (written by spallkit " + version + ")";
+    throw InputError(path + ": " + e.what() + writer + kStartAgain);
   }
 }
 

@@ -6,7 +6,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <limits>
 
+#include "core/checkpoint_io.h"
 #include "core/constants.h"
 #include "core/error.h"
 #include "core/hdf5.h"
@@ -404,6 +407,58 @@ TEST(SimulateTest, ResumedRunIsBitIdenticalToAnUninterruptedOne) {
   std::remove((b.output_path + ".ckpt").c_str());
   std::remove(a.output_path.c_str());
   std::remove(b.output_path.c_str());
+}
+
+// A checkpoint another build wrote, whose state no longer fits the model (the state layouts
+// change between builds), or one of the format before the version was recorded, is refused with
+// one line naming the file, whose build wrote it, and what to do.
+TEST(SimulateTest, CheckpointOfAnotherBuildIsRefusedWithWhatToDo) {
+  const Scene scene = LoadScene(Scenes() + "paper-verification.toml",
+                                {"model.fidelity=lumped", "run.duration_s=0.002"});
+  SimulationOptions o;
+  o.output_path = TempPath("other_build.h5");
+  o.stop_after_s = 1e-3;
+  EXPECT_FALSE(Simulation(scene, o).Run().completed);
+  const std::string ckpt = o.output_path + ".ckpt";
+  std::string bytes;
+  {
+    std::ifstream in(ckpt, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ASSERT_GT(bytes.size(), 8u);
+  auto resume_error = [&](const std::string& file_bytes) {
+    std::ofstream(ckpt, std::ios::binary | std::ios::trunc) << file_bytes;
+    SimulationOptions r = o;
+    r.resume = true, r.stop_after_s = std::numeric_limits<double>::infinity();
+    try {
+      Simulation(scene, r).Run();
+    } catch (const spallkit::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  // The model's state one value short, as an older build's layout would be.
+  CheckpointReader in(std::string_view(bytes).substr(8), "test");
+  const std::string version = in.GetBytes(), toml = in.GetBytes(), model = in.GetBytes(),
+                    recorder = in.GetBytes();
+  EXPECT_EQ(version, SPALLKIT_VERSION);
+  CheckpointWriter out;
+  for (char c : bytes.substr(0, 8)) out.Put(c);
+  out.PutBytes("0.0.1");
+  out.PutBytes(toml);
+  out.PutBytes(model.substr(0, model.size() - 8));
+  out.PutBytes(recorder);
+  const std::string short_state = resume_error(out.bytes());
+  EXPECT_EQ(short_state.find(ckpt), 0u) << short_state;
+  EXPECT_NE(short_state.find("written by spallkit 0.0.1"), std::string::npos) << short_state;
+  EXPECT_NE(short_state.find("run again without --resume"), std::string::npos) << short_state;
+  std::string format01 = bytes;
+  format01[7] = '1';
+  const std::string old = resume_error(format01);
+  EXPECT_NE(old.find("older spallkit"), std::string::npos) << old;
+  EXPECT_NE(old.find("run again without --resume"), std::string::npos) << old;
+  std::remove(ckpt.c_str());
+  std::remove(o.output_path.c_str());
 }
 
 TEST(SimulateTest, HybridResumedRunIsBitIdenticalToAnUninterruptedOne) {
