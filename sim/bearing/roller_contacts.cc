@@ -518,9 +518,14 @@ void RollerContacts::SolveTraction(int j) {
   // the free slip of each contact. The counter bodies' changes are left to the next step (the
   // ring and the shaft are much heavier, the shaft's spin is prescribed).
   const double dvx = dt_m * fx_[j], dvy = dt_m * fy_[j], dw = dt_i * torque_[j];
-  constexpr int kN = contact::kMaxImplicitContacts;
-  double normal[kN] = {}, free_slip[kN] = {}, entrainment[kN] = {}, compliance[kN * kN] = {},
-         force[kN] = {};
+  // The solve's arrays: scratch members, of which the first n (n x n) entries are written here
+  // (zero-filled locals were a measurable part of the step).
+  double* normal = solve_.normal;
+  double* free_slip = solve_.free_slip;
+  double* entrainment = solve_.entrainment;
+  double* compliance = solve_.compliance;
+  double* force = solve_.force;
+  double* secant = solve_.secant;
   for (int k = 0; k < n; ++k) {
     const TractionContact& c = traction_[k];
     normal[k] = c.normal, entrainment[k] = c.entrainment;
@@ -531,7 +536,6 @@ void RollerContacts::SolveTraction(int j) {
     }
     compliance[k * n + k] += dt_avg * inverse_counter_mass_[static_cast<int>(c.body)];
   }
-  double secant[kN] = {};
   for (int k = 0; k < n; ++k) secant[k] = *traction_[k].spring;
   contact::SolveImplicitTraction(
       scene_.friction.ehl, n, normal, free_slip, entrainment, compliance, secant, force);

@@ -317,6 +317,11 @@ class RollerContacts {
   mutable double widened_margin_ = std::numeric_limits<double>::quiet_NaN();
   TractionContact traction_[contact::kMaxImplicitContacts];
   int num_traction_ = 0;
+  // SolveTraction's arrays (scratch, not state).
+  struct TractionSolveArrays {
+    static constexpr int kN = contact::kMaxImplicitContacts;
+    double normal[kN], free_slip[kN], entrainment[kN], compliance[kN * kN], force[kN], secant[kN];
+  } solve_;
   double cage_cos_ = 1, cage_sin_ = 0;  // of the cage's angle at x^n
   // Per roller at x^n: cos and sin of its angle (advanced with it in Integrate and
   // checkpointed: not recomputed from the angle), circle centre.

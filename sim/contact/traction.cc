@@ -138,11 +138,12 @@ void SolveImplicitTraction(const EhlTraction& law,
   // (D + A) f = -v_free, D = diag(1 / c_k), A the compliance. c_k: the last step's secant (a
   // rolling contact's slip changes little from step to step), else the secant at the free slip.
   {
-    double a[kN][kN] = {}, b[kN] = {};
+    // a: the first n x n written below (no zero-fill of the whole matrix: a hot path).
+    double a[kN][kN], b[kN] = {};
     for (int k = 0; k < n; ++k) {
       for (int l = 0; l < n; ++l) a[k][l] = cap[k] > 0 && cap[l] > 0 ? compliance[k * n + l] : 0.0;
       if (!(cap[k] > 0)) {  // no film load, no force
-        a[k][k] = 1.0, b[k] = 0.0;
+        a[k][k] = 1.0;
         continue;
       }
       // 1 / c, c the guessed secant (kept per newton of normal force).
