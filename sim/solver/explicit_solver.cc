@@ -10,6 +10,7 @@
 #include <exception>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include "core/atomic_file.h"
 #include "core/constants.h"
@@ -345,8 +346,11 @@ double ExplicitSolver::UpdateNodes(int c, bool gather, const UpdateConstants& k)
     while (i1 < end && part[i1] == p) ++i1;
     const double* r = pr + 5 * p;
     const double r0 = rel * r[0], r1 = rel * r[1], r2 = rel * r[2], r3 = r[3], r4 = r[4];
-    double run_work = 0.0;
-    if (k.energy) {
+    // One loop for both: with kWork the mass-damping work is summed (energy_terms), without it
+    // the update is the same.
+    auto update = [&](auto with_work) {
+      constexpr bool kWork = decltype(with_work)::value;
+      double run_work = 0.0;
 #pragma omp simd reduction(+ : run_work)
       for (int i = i0; i < i1; ++i) {
         const double rvx = r0 - r2 * (y[i] - r4), rvy = r1 + r2 * (x[i] - r3);
@@ -355,25 +359,17 @@ double ExplicitSolver::UpdateNodes(int c, bool gather, const UpdateConstants& k)
         const double ux1 = (c_old * ux0 + s * fx[i]) * c_inv;
         const double uy1 = (c_old * uy0 + s * fy[i]) * c_inv;
         const double vx1 = rvx + ux1, vy1 = rvy + uy1;
-        const double free = fixed[i] ? 0.0 : 1.0;  // constrained nodes: no damping work
-        run_work +=
-            free * w_scale * m[i] * ((ux0 + ux1) * (vx[i] + vx1) + (uy0 + uy1) * (vy[i] + vy1));
+        if constexpr (kWork) {
+          const double free = fixed[i] ? 0.0 : 1.0;  // constrained nodes: no damping work
+          run_work +=
+              free * w_scale * m[i] * ((ux0 + ux1) * (vx[i] + vx1) + (uy0 + uy1) * (vy[i] + vy1));
+        }
         vx[i] = vx1, vy[i] = vy1;
         x[i] += dt * vx1, y[i] += dt * vy1;
       }
-    } else {  // the same update without the work (SolverOptions::energy_terms off)
-#pragma omp simd
-      for (int i = i0; i < i1; ++i) {
-        const double rvx = r0 - r2 * (y[i] - r4), rvy = r1 + r2 * (x[i] - r3);
-        const double s = dt_avg * inv_m[i];
-        const double ux0 = vx[i] - rvx, uy0 = vy[i] - rvy;
-        const double ux1 = (c_old * ux0 + s * fx[i]) * c_inv;
-        const double uy1 = (c_old * uy0 + s * fy[i]) * c_inv;
-        const double vx1 = rvx + ux1, vy1 = rvy + uy1;
-        vx[i] = vx1, vy[i] = vy1;
-        x[i] += dt * vx1, y[i] += dt * vy1;
-      }
-    }
+      return run_work;
+    };
+    const double run_work = k.energy ? update(std::true_type{}) : update(std::false_type{});
     work += run_work;
     i0 = i1;
   }
