@@ -282,18 +282,6 @@ HousingFit FitHousing(const Scene& scene, const BearingModelOptions& options) {
   return fit;
 }
 
-bool RigidOuterRace::MayTouch(double cx, double cy, double radius) const {
-  const double dx = cx - x_, dy = cy - y_, reach = radius_ - radius;
-  return reach < 0 || dx * dx + dy * dy > reach * reach;
-}
-
-void RigidOuterRace::Gap(double qx, double qy, double rad, RacePoint* p) const {
-  const double dx = qx - x_, dy = qy - y_, d = std::sqrt(dx * dx + dy * dy);
-  p->nx = -dx / d, p->ny = -dy / d;
-  p->px = qx - rad * p->nx, p->py = qy - rad * p->ny;
-  p->delta = d + rad - radius_;
-}
-
 LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOptions& options)
     : BearingModel(scene, options),
       housing_(MeshBearingHousing(HousingFitScene(scene, options.lumped))),

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "sim/bearing/bearing_model.h"
+#include "sim/bearing/rigid_outer_race.h"
 #include "sim/bearing/roller_contacts.h"
 
 namespace spallkit::sim {
@@ -67,19 +68,6 @@ double SensorPathVelocity(const HousingFit& fit,
                           const std::vector<double>& f_down,
                           const std::vector<double>& f_x,
                           long newest);
-
-// The outer ring as one rigid circle of the raceway radius, centre (x, y), no rotation.
-class RigidOuterRace : public OuterRace {
- public:
-  explicit RigidOuterRace(double radius) : radius_(radius) {}
-  void Gap(double qx, double qy, double rad, RacePoint* p) const override;
-  void Velocity(double, double, double* vx, double* vy) const override { *vx = vx_, *vy = vy_; }
-  void Apply(double, double, double fx, double fy) override { fx_ += fx, fy_ += fy; }
-  bool MayTouch(double cx, double cy, double radius) const override;
-
-  double radius_ = 0, x_ = 0, y_ = 0, vx_ = 0, vy_ = 0;
-  double fx_ = 0, fy_ = 0;  // force of the rollers this step
-};
 
 class LumpedBearingModel : public BearingModel {
  public:

@@ -7,6 +7,7 @@
 #include "core/checkpoint_io.h"
 #include "core/constants.h"
 #include "core/error.h"
+#include "sim/bearing/rigid_outer_race.h"
 #include "sim/quasistatic/harris_jones.h"
 #include "sim/solver/stable_step.h"
 
@@ -38,6 +39,12 @@ void RotateCosSin(double da, double angle, double* c, double* s) {
 }
 
 }  // namespace
+
+template <class F>
+decltype(auto) RollerContacts::WithRace(F&& f) const {
+  if (rigid_race_) return f(*rigid_race_);
+  return f(*race_);
+}
 
 bool HybridOptions::IsValid(std::string* error) const {
   auto fail = [&](const char* m) {
@@ -344,7 +351,7 @@ int RollerContacts::RacePoints(int j,
 void RollerContacts::CounterVelocity(
     Counter body, double px, double py, double* vx, double* vy) const {
   if (body == Counter::kOuterRace) {
-    race_->Velocity(px, py, vx, vy);
+    WithRace([&](auto& race) { race.Velocity(px, py, vx, vy); });
   } else if (body == Counter::kShaft) {
     *vx = shaft_.vx - omega_s_ * (py - shaft_.y);
     *vy = shaft_.vy + omega_s_ * (px - shaft_.x);
@@ -356,7 +363,7 @@ void RollerContacts::CounterVelocity(
 
 void RollerContacts::ApplyCounter(Counter body, double px, double py, double fx, double fy) {
   if (body == Counter::kOuterRace) {
-    race_->Apply(px, py, fx, fy);
+    WithRace([&](auto& race) { race.Apply(px, py, fx, fy); });
   } else if (body == Counter::kShaft) {
     shaft_fx_ += fx, shaft_fy_ += fy;
     shaft_torque_ += (px - shaft_.x) * fy - (py - shaft_.y) * fx;
@@ -564,7 +571,7 @@ void RollerContacts::RaceContacts(
   // (by more than rounding) has no contact, and its stick spring is released as in Contact.
   const double rho = prof.edge_radius;
   const double cx = centre_x_[j], cy = centre_y_[j];
-  if (race_->MayTouch(cx, cy, prof.radius + kReachMargin)) {
+  if (WithRace([&](auto& race) { return race.MayTouch(cx, cy, prof.radius + kReachMargin); })) {
     int n = RacePoints(j, 0, prof, dirs, pts);
     double qx[2], qy[2], rad[2];
     if (n == 1) {
@@ -573,9 +580,11 @@ void RollerContacts::RaceContacts(
     } else {
       for (int k = 0; k < 2; ++k) qx[k] = pts[k].px, qy[k] = pts[k].py, rad[k] = rho;
     }
-    for (int k = 0; k < n; ++k) race_->Gap(qx[k], qy[k], rad[k], &pts[k]);
+    WithRace([&](auto& race) {
+      for (int k = 0; k < n; ++k) race.Gap(qx[k], qy[k], rad[k], &pts[k]);
+    });
     if (n == 2) {  // the intact circle's point: what the rim pair's zones share
-      race_->Gap(cx, cy, prof.radius, &pts[2]);
+      WithRace([&](auto& race) { race.Gap(cx, cy, prof.radius, &pts[2]); });
       n = 3;
     }
     outer_force_[j] += Contact(j, Counter::kOuterRace, true, pts, n, &friction_[slot], scale);
@@ -676,7 +685,7 @@ void RollerContacts::FinishDissipation() {
     const double vrx = b.vx - b.omega * d.ay, vry = b.vy + b.omega * d.ax;
     double vcx, vcy;
     if (d.counter == static_cast<int>(Counter::kOuterRace)) {
-      race_->Velocity(d.px, d.py, &vcx, &vcy);
+      WithRace([&](auto& race) { race.Velocity(d.px, d.py, &vcx, &vcy); });
     } else {
       const Body& c = d.counter == static_cast<int>(Counter::kShaft) ? shaft_ : cage_;
       const double w = d.counter == static_cast<int>(Counter::kShaft) ? d.omega : c.omega;
@@ -690,6 +699,7 @@ void RollerContacts::FinishDissipation() {
 
 void RollerContacts::Step(OuterRace& race, double t, double dt) {
   race_ = &race;
+  rigid_race_ = race.AsRigid();
   FinishDissipation();
   dt_ = dt;
   omega_s_ = speed_(t);
@@ -712,6 +722,7 @@ void RollerContacts::Step(OuterRace& race, double t, double dt) {
   potential_ = step_potential_;
   Integrate(t, dt);
   race_ = nullptr;
+  rigid_race_ = nullptr;
 }
 
 void RollerContacts::Integrate(double t, double dt) {

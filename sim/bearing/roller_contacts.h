@@ -86,6 +86,8 @@ struct RacePoint {
 };
 
 // The outer race as the rollers see it.
+class RigidOuterRace;
+
 class OuterRace {
  public:
   virtual ~OuterRace() = default;
@@ -100,6 +102,9 @@ class OuterRace {
   // False only when a circle (centre, radius) certainly does not touch the race (a cheap
   // bound that lets the rollers skip the contact).
   virtual bool MayTouch(double /*cx*/, double /*cy*/, double /*radius*/) const { return true; }
+  // The lumped model's rigid ring (rigid_outer_race.h), else null: RollerContacts then calls its
+  // inline methods directly instead of through this interface.
+  virtual RigidOuterRace* AsRigid() { return nullptr; }
 };
 
 class RollerContacts {
@@ -307,6 +312,10 @@ class RollerContacts {
 
   // Per step.
   OuterRace* race_ = nullptr;
+  RigidOuterRace* rigid_race_ = nullptr;  // race_->AsRigid(), set with race_
+  // f(race) with the race's own type when it is the rigid ring (direct, inlined calls).
+  template <class F>
+  decltype(auto) WithRace(F&& f) const;
   double dt_ = 0, omega_s_ = 0, step_potential_ = 0;
   double shaft_fx_ = 0, shaft_fy_ = 0, shaft_torque_ = 0, cage_fx_ = 0, cage_fy_ = 0,
          cage_torque_ = 0;
