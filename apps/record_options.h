@@ -1,9 +1,11 @@
 // The record, bearing and speed options shared by `spall diagnose` and `spall identify`: the
-// record file and its channel / sample rate, the bearing (apps/bearing_options.h) and --rpm.
+// record file and its channel / sample rate, the start it leaves out, the bearing
+// (apps/bearing_options.h) and --rpm.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstddef>
 #include <string>
 
 #include "apps/bearing_options.h"
@@ -20,6 +22,7 @@ struct RecordInputOptions {
   double fs = 0.0;
   CLI::Option* fs_option = nullptr;
   std::string channel;
+  double from_s = 0.0;
 
   void Add(CLI::App& sub) {
     sub.add_option("record", record, "record file (.csv/.txt or .h5)")->required();
@@ -30,6 +33,11 @@ struct RecordInputOptions {
                    channel,
                    "column name (its unit may be left off: accel_z for 'accel_z (m/s^2)') / "
                    "0-based data column, or HDF5 path");
+    sub.add_option("--from-s",
+                   from_s,
+                   "leave out the record's first seconds (a simulation's start-up: spall "
+                   "simulate's ramps and settling), s")
+        ->capture_default_str();
   }
 
   // Throws InputError for a speed or sample rate that is not a positive finite number.
@@ -38,6 +46,8 @@ struct RecordInputOptions {
       throw InputError("--rpm must be > 0 (got " + Number(rpm) + ")");
     if (fs_option && fs_option->count() > 0 && (!(fs > 0.0) || !std::isfinite(fs)))
       throw InputError("--fs must be > 0 Hz (got " + std::to_string(fs) + ")");
+    if (!(from_s >= 0.0) || !std::isfinite(from_s))
+      throw InputError("--from-s must be >= 0 s (got " + Number(from_s) + ")");
   }
 
   double ShaftHz() const { return rpm / 60.0; }
@@ -47,7 +57,14 @@ struct RecordInputOptions {
     RecordOptions ro;
     ro.sample_rate_hz = fs;
     ro.channel = channel;
-    return ReadRecord(record, ro);
+    Record r = ReadRecord(record, ro);
+    const double skip = std::ceil(from_s * r.sample_rate_hz - 1e-9);
+    if (skip >= static_cast<double>(r.samples.size()))
+      throw InputError(record + ": --from-s " + Number(from_s) +
+                       " s leaves no samples (the record is " +
+                       Number(static_cast<double>(r.samples.size()) / r.sample_rate_hz) + " s)");
+    r.samples.erase(r.samples.begin(), r.samples.begin() + static_cast<std::ptrdiff_t>(skip));
+    return r;
   }
 };
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -75,6 +76,21 @@ TEST(DiagnoseCli, OuterRaceJsonAndPlots) {
   EXPECT_NE(text.out.find("VERDICT: outer_race"), std::string::npos) << text.out;
 }
 
+// --from-s leaves out the record's start (a simulation's start-up): the analysis sees the rest.
+TEST(DiagnoseCli, FromSecondsLeavesOutTheStart) {
+  const std::string path = WriteSynthetic("spall_cli_outer_from.csv", 2.0, true);
+  const Result whole = RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --json");
+  const Result cut =
+      RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --json --from-s 0.5");
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  ASSERT_EQ(cut.code, 0) << cut.err;
+  const auto a = nlohmann::json::parse(whole.out), b = nlohmann::json::parse(cut.out);
+  const double fs = a["record"]["sample_rate_hz"].get<double>();
+  EXPECT_EQ(a["record"]["samples"].get<long>() - b["record"]["samples"].get<long>(),
+            std::lround(0.5 * fs));
+  EXPECT_EQ(b["verdict"], "outer_race");
+}
+
 void ExpectError(const std::string& args, const std::string& needle) {
   const Result r = RunSpall(args);
   EXPECT_EQ(r.code, 2) << args;
@@ -97,6 +113,9 @@ TEST(DiagnoseCli, BadInputIsOneLineAndExitCode2) {
   ExpectError("frequencies --bearing 6205 --rpm 0", "--rpm must be > 0");
   ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --threads 100000",
               "--threads must be in 0..64");
+  ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --from-s -1",
+              "--from-s must be >= 0");
+  ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --from-s 2", "leaves no samples");
 }
 
 TEST(DiagnoseCli, RecordsThatCannotBeAnalysedAreRefusedOrFlagged) {
@@ -112,7 +131,8 @@ TEST(DiagnoseCli, RecordsThatCannotBeAnalysedAreRefusedOrFlagged) {
   spallkit::Record r = spallkit::ReadRecord(path);
   r.samples[3000] = 1e20;
   spallkit::WriteCsvRecord(dir + "/spall_cli_spike.csv", {{"time_s", t}, {"accel_g", r.samples}});
-  const Result text = RunSpall("diagnose " + dir + "/spall_cli_spike.csv --bearing 6205 --rpm 1797");
+  const Result text =
+      RunSpall("diagnose " + dir + "/spall_cli_spike.csv --bearing 6205 --rpm 1797");
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("WARNING (verdict not confident)"), std::string::npos) << text.out;
   EXPECT_EQ(text.out.find("inf"), std::string::npos) << text.out;
