@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "core/constants.h"
 #include "core/hdf5.h"
@@ -134,11 +135,55 @@ TEST(LumpedDiagnoseTest, OneSecondRecordIsTheRollerSpallWhereverItStarts) {
       ASSERT_TRUE(d.measured_f_b_hz.has_value());
       EXPECT_NEAR(*d.measured_f_b_hz / d.kinematics.f_b_hz, 1.0, 0.01);
     }
-  std::printf("rolling_element on %d of 12 cuts, %d with the two combs unresolved\n",
-              rolling,
-              unresolved);
+  std::printf(
+      "rolling_element on %d of 12 cuts, %d with the two combs unresolved\n", rolling, unresolved);
   EXPECT_GE(rolling, 10);
   EXPECT_GE(unresolved, 6);  // the case this test is about: both combs, not separable
+}
+
+// A simulated healthy bearing's steady state (from 0.05 s on) and the contacts' damping law
+// (docs/DIAGNOSIS.md, "Empirical false-alarm rate"; docs/BEARING_MODEL.md, "Limits"): with the
+// rigid rollers' viscous race contact damping (zeta 0.1, in full from the first nanometre of
+// penetration) every contact that starts or ends at the load zone's edges steps its force, and
+// the horizontal channel of this healthy lumped bearing (one of the identification's tuning
+// cases: 1498 rpm, 11.9 kN, traction law) is called outer_race (printed, not asserted: which
+// healthy cases it hits moves with the realization, 5 of 8 of those cases). Without that damping
+// the bearing is healthy on both channels: nothing else in the model or the diagnosis makes a
+// fault comb of a clean healthy record. About 4 s.
+TEST(LumpedDiagnoseTest, HealthyBearingWithoutTheContactDampingStepIsHealthy) {
+  namespace sim = spallkit::sim;
+  namespace dsp = spallkit::dsp;
+  const sim::Scene scene =
+      sim::LoadScene(std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml",
+                     {"model.fidelity=lumped",
+                      "defects=[]",
+                      "friction.model=ehl",
+                      "operation.speed_rpm=1497.6492058994559",
+                      "operation.radial_load_n=11922.633053147838",
+                      "run.duration_s=1.05",
+                      "run.outputs=[\"acceleration\"]"});
+  const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
+  // The verdicts of both channels from 0.05 s on, with the given race contact damping ratio.
+  auto verdicts = [&](double damping_ratio) {
+    sim::SimulationOptions o;
+    o.model.hybrid.contact_damping_ratio = damping_ratio;
+    sim::Simulation simulation(scene, o);
+    simulation.Run();
+    std::vector<dsp::Verdict> v;
+    for (auto axis : {sim::AccelerationAxis::kVertical, sim::AccelerationAxis::kHorizontal}) {
+      spallkit::Record r = sim::ToRecord(simulation, axis);
+      r.samples.erase(r.samples.begin(),
+                      r.samples.begin() + static_cast<long>(0.05 * r.sample_rate_hz));
+      v.push_back(dsp::Diagnose(r, scene.geometry.bearing, shaft_hz).verdict);
+      std::printf("contact damping %.2f, %s from 0.05 s: %s\n",
+                  damping_ratio,
+                  r.channel.c_str(),
+                  dsp::VerdictName(v.back()));
+    }
+    return v;
+  };
+  verdicts(0.1);
+  for (dsp::Verdict v : verdicts(0.0)) EXPECT_EQ(v, dsp::Verdict::kHealthy);
 }
 
 }  // namespace
