@@ -50,8 +50,18 @@ bool BearingModelOptions::IsValid(std::string* error) const {
   return cage_guide.IsValid(error);
 }
 
+namespace {
+// The options with what the scene sets for them: [model] contact_damping, for every contact.
+BearingModelOptions WithSceneSettings(BearingModelOptions options, const Scene& scene) {
+  if (scene.model.contact_damping)
+    options.contact_damping_ratio = options.hybrid.contact_damping_ratio =
+        *scene.model.contact_damping;
+  return options;
+}
+}  // namespace
+
 BearingModel::BearingModel(const Scene& scene, const BearingModelOptions& options)
-    : scene_(scene), options_(options) {
+    : scene_(scene), options_(WithSceneSettings(options, scene)) {
   std::string err;
   if (!options_.IsValid(&err)) throw InputError(err);
   speed_ = solver::RampedSpeed(scene_.operation.inner_ring_speed_rad_s, scene_.operation.ramp_s);

@@ -289,11 +289,11 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
       rollers_(scene,
                housing_,
                std::min(fit_.mass[0], fit_.mass[1]),
-               options.hybrid,
-               options.cage_guide),
+               options_.hybrid,  // the base's: with the scene's settings
+               options_.cage_guide),
       race_(housing_.outer_raceway_radius_m) {
   std::string err;
-  if (!options.hybrid.IsValid(&err)) throw InputError(err);
+  if (!options_.hybrid.IsValid(&err)) throw InputError(err);
   // Sensor channels in the FE models' order: every scene sensor, each of its directions.
   for (const Sensor& sensor : scene_.sensors)
     for (Axis dir : sensor.directions) channels_.push_back({sensor.name, dir, -1, 0.0});

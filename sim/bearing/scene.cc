@@ -462,6 +462,8 @@ void ReadModel(Section s,
   model->adapter = Choice(s, "adapter", AdapterModel::kElastic, kAdapterModelNames);
   model->race_contact = Choice(s, "race_contact", RaceContact::kSmooth, kRaceContactNames);
   model->start = Choice(s, "start", StartPose::kSeated, kStartPoseNames);
+  if (s.Has("contact_damping"))
+    model->contact_damping = s.Number("contact_damping", 0.1, {0.0, 1.0, false, false});
   // The FE section is 2-D: a spall runs through its whole thickness.
   for (std::size_t i = 0; model->fidelity == Fidelity::kFe && i < defects.size(); ++i)
     if (defects[i].ShorterThan(g.thickness_m))

@@ -12,6 +12,7 @@
 
 #include <toml++/toml.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -190,6 +191,10 @@ struct SceneModel {
   AdapterModel adapter = AdapterModel::kElastic;
   RaceContact race_contact = RaceContact::kSmooth;
   StartPose start = StartPose::kSeated;
+  // Normal damping of the contacts, fraction of each contact's critical value (the rigid
+  // rollers' race contacts and the full FE's contact pairs); absent: the models' default (0.1,
+  // BearingModelOptions::contact_damping_ratio and HybridOptions::contact_damping_ratio).
+  std::optional<double> contact_damping;
 };
 
 struct SceneSolver {

@@ -165,9 +165,9 @@ TEST(LumpedDiagnoseTest, HealthyBearingWithoutTheContactDampingStepIsHealthy) {
   const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
   // The verdicts of both channels from 0.05 s on, with the given race contact damping ratio.
   auto verdicts = [&](double damping_ratio) {
-    sim::SimulationOptions o;
-    o.model.hybrid.contact_damping_ratio = damping_ratio;
-    sim::Simulation simulation(scene, o);
+    sim::Scene s = scene;
+    s.model.contact_damping = damping_ratio;  // [model] contact_damping
+    sim::Simulation simulation(s, {});
     simulation.Run();
     std::vector<dsp::Verdict> v;
     for (auto axis : {sim::AccelerationAxis::kVertical, sim::AccelerationAxis::kHorizontal}) {

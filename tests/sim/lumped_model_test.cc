@@ -416,6 +416,17 @@ TEST(LumpedModelTest, TakesTheShortStepOnlyInRampsAndSpallPassages) {
   }
 }
 
+// [model] contact_damping reaches every model's contacts: the rigid rollers' (lumped, hybrid)
+// and the full FE's pairs; without it the options given in code stand.
+TEST(LumpedModelTest, SceneContactDampingReachesTheModel) {
+  const auto model = MakeBearingModel(LumpedScene({"model.contact_damping=0.25"}));
+  EXPECT_EQ(model->options().hybrid.contact_damping_ratio, 0.25);
+  EXPECT_EQ(model->options().contact_damping_ratio, 0.25);
+  BearingModelOptions o;
+  o.hybrid.contact_damping_ratio = 0.05;
+  EXPECT_EQ(MakeBearingModel(LumpedScene({}), o)->options().hybrid.contact_damping_ratio, 0.05);
+}
+
 // A run stopped and resumed from its checkpoint writes exactly the uninterrupted run's
 // datasets, and the file says which model made it.
 TEST(LumpedModelTest, ResumedRunIsBitIdenticalAndTheFileNamesTheModel) {

@@ -221,6 +221,18 @@ TEST(Scene, RaceContactIsFacetedCurvedOrSmooth) {
             RaceContact::kCurved);
 }
 
+// [model] contact_damping: absent, the models keep their own default; set, a fraction of
+// critical in [0, 1]; kept by the effective scene.
+TEST(Scene, ContactDampingIsOptionalAndAFractionOfCritical) {
+  EXPECT_FALSE(ParseScene("", "default.toml").model.contact_damping.has_value());
+  const Scene s = ParseScene("[model]\ncontact_damping = 0.0\n", "d.toml");
+  ASSERT_TRUE(s.model.contact_damping.has_value());
+  EXPECT_EQ(*s.model.contact_damping, 0.0);
+  EXPECT_EQ(ParseScene(s.effective_toml, "again.toml").model.contact_damping, 0.0);
+  ExpectOneLineError(ErrorOf("[model]\ncontact_damping = 1.5\n"), "model.contact_damping");
+  ExpectOneLineError(ErrorOf("[model]\ncontact_damping = -0.1\n"), "model.contact_damping");
+}
+
 // The [model] choices are enums; their names are the scene file's words, and the effective
 // scene keeps the words (a re-run reads them back to the same enums).
 TEST(Scene, ModelChoicesAreEnumsNamedAsInTheSceneFile) {
