@@ -25,8 +25,9 @@
 //     sensor channels, each from 0.05 s on (the start-up's spikes would hide the steady state):
 //     the rollers passing the load zone modulate the response at Z f_c (varying compliance),
 //     which is not a fault. Some of these records are called outer_race: the load zone's edges
-//     strike (docs/DIAGNOSIS.md, "Empirical false-alarm rate"). The hybrid with dry friction is
-//     reported apart (BM_SimulatedDryEntryHybrid, below).
+//     strike (docs/DIAGNOSIS.md, "Empirical false-alarm rate"); the hybrid without the race
+//     contacts' damping (BM_FalseAlarmSimulatedHealthyHybridUndamped) is not. The hybrid with dry
+//     friction is reported apart (BM_SimulatedDryEntryHybrid, below).
 // Run: build/bench/false_alarm_benchmark [--benchmark_filter=Synthetic] (Arg: design rate x 1e4,
 // so 10 = 1e-3; 500 = 5e-2 checks that the test is calibrated, not only conservative).
 #include <benchmark/benchmark.h>
@@ -297,6 +298,7 @@ struct SimulatedRun {
   const char* fidelity;
   double rpm, seconds;
   Friction friction;
+  double contact_damping = -1.0;  // [model] contact_damping; < 0: the scene's default
 };
 void SimulatedHealthy(benchmark::State& state, const std::vector<SimulatedRun>& runs) {
   namespace sim = spallkit::sim;
@@ -316,6 +318,8 @@ void SimulatedHealthy(benchmark::State& state, const std::vector<SimulatedRun>& 
         sets.push_back("friction.model=ehl");
       else
         sets.insert(sets.end(), {"friction.mu_static=0.1", "friction.mu_dynamic=0.08"});
+      if (run.contact_damping >= 0)
+        sets.push_back("model.contact_damping=" + std::to_string(run.contact_damping));
       sim::Scene scene = sim::LoadScene(scene_path, sets);
       scene.defects.clear();
       sim::Simulation simulation(scene, {});
@@ -333,9 +337,12 @@ void SimulatedHealthy(benchmark::State& state, const std::vector<SimulatedRun>& 
               m,
               o,
               std::string("simulated healthy, ") + run.fidelity + ", " +
-                  (run.friction == Friction::kTraction ? "traction law" : "dry mu 0.1") + ", " +
-                  std::to_string(static_cast<int>(run.rpm)) + " rpm, " + r.channel + " from " +
-                  spallkit::FormatNumber("%g s", kStartUpS));
+                  (run.friction == Friction::kTraction ? "traction law" : "dry mu 0.1") +
+                  (run.contact_damping >= 0
+                       ? ", contact damping " + spallkit::FormatNumber("%g", run.contact_damping)
+                       : std::string()) +
+                  ", " + std::to_string(static_cast<int>(run.rpm)) + " rpm, " + r.channel +
+                  " from " + spallkit::FormatNumber("%g s", kStartUpS));
       }
     }
   }
@@ -356,6 +363,16 @@ void BM_FalseAlarmSimulatedHealthyHybrid(benchmark::State& state) {
   SimulatedHealthy(state, {{"hybrid", 1200, 1.15, Friction::kTraction}});
 }
 BENCHMARK(BM_FalseAlarmSimulatedHealthyHybrid)->Arg(10)->Iterations(1)->Unit(benchmark::kSecond);
+// The same without the race contacts' damping (`[model] contact_damping = 0`, as the paper's
+// model): the damping's force step where a contact starts or ends at the load zone's edges is
+// what the damped records' outer-race comb is (docs/DIAGNOSIS.md, "Empirical false-alarm rate").
+void BM_FalseAlarmSimulatedHealthyHybridUndamped(benchmark::State& state) {
+  SimulatedHealthy(state, {{"hybrid", 1200, 1.15, Friction::kTraction, 0.0}});
+}
+BENCHMARK(BM_FalseAlarmSimulatedHealthyHybridUndamped)
+    ->Arg(10)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
 // The same with dry Coulomb friction on the races. Not a healthy-like record: a roller that
 // enters the load zone sticks at its first contact (its spin jumps by ~1 % within 0.1 ms), so
 // every roller passage strikes the outer ring at the same place, an impulse train at BPFO with
