@@ -5,7 +5,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
-#include <cstddef>
 #include <string>
 
 #include "apps/bearing_options.h"
@@ -58,12 +57,9 @@ struct RecordInputOptions {
     ro.sample_rate_hz = fs;
     ro.channel = channel;
     Record r = ReadRecord(record, ro);
-    const double skip = std::ceil(from_s * r.sample_rate_hz - 1e-9);
-    if (skip >= static_cast<double>(r.samples.size()))
+    if (!DropStart(&r, from_s))
       throw InputError(record + ": --from-s " + Number(from_s) +
-                       " s leaves no samples (the record is " +
-                       Number(static_cast<double>(r.samples.size()) / r.sample_rate_hz) + " s)");
-    r.samples.erase(r.samples.begin(), r.samples.begin() + static_cast<std::ptrdiff_t>(skip));
+                       " s leaves no samples (the record is " + Number(r.duration_s()) + " s)");
     return r;
   }
 };

@@ -330,8 +330,7 @@ void SimulatedHealthy(benchmark::State& state, const std::vector<SimulatedRun>& 
       for (sim::AccelerationAxis axis :
            {sim::AccelerationAxis::kVertical, sim::AccelerationAxis::kHorizontal}) {
         Record r = sim::ToRecord(simulation, axis);
-        const auto skip = static_cast<std::ptrdiff_t>(std::lround(kStartUpS * r.sample_rate_hz));
-        r.samples.erase(r.samples.begin(), r.samples.begin() + skip);
+        spallkit::DropStart(&r, kStartUpS);
         Count(&t,
               r,
               m,

@@ -3,6 +3,8 @@
 // lives in core so that the simulator and the DSP layer share it without depending on each other.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,5 +21,15 @@ struct Record {
     return sample_rate_hz > 0 ? static_cast<double>(samples.size()) / sample_rate_hz : 0.0;
   }
 };
+
+// Leaves out the record's first `seconds` (to the nearest sample; e.g. a simulation's start-up).
+// False, and the record untouched, when that would leave no sample.
+inline bool DropStart(Record* record, double seconds) {
+  const double skip = std::round(seconds * record->sample_rate_hz);
+  if (!(skip >= 0) || skip >= static_cast<double>(record->samples.size())) return false;
+  record->samples.erase(record->samples.begin(),
+                        record->samples.begin() + static_cast<std::ptrdiff_t>(skip));
+  return true;
+}
 
 }  // namespace spallkit

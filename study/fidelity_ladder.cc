@@ -369,16 +369,9 @@ std::vector<LadderRun> LadderRunsFromJson(const nlohmann::json& j, double* durat
     if (!scene.is_string() || !fidelity.is_string())
       throw InputError("stored ladder runs: " + where + ": scene and fidelity must be strings");
     r.scene = scene.get<std::string>();
-    const std::string f = fidelity.get<std::string>();
-    if (f == "fe") {
-      r.rung.fidelity = Fidelity::kFe;
-    } else if (f == "hybrid") {
-      r.rung.fidelity = Fidelity::kHybrid;
-    } else if (f == "lumped") {
-      r.rung.fidelity = Fidelity::kLumped;
-    } else {
+    if (!sim::ParseFidelity(fidelity.get<std::string>(), &r.rung.fidelity) ||
+        r.rung.fidelity == Fidelity::kAuto)
       throw InputError("stored ladder runs: " + where + ".fidelity must be fe, hybrid or lumped");
-    }
     r.rung.mesh_m = num(o, "mesh_mm", where) * 1e-3;
     const nlohmann::json& mj = at(o, "metrics", where);
     const std::string mw = where + ".metrics";

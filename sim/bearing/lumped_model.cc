@@ -135,12 +135,17 @@ class RacewayPulse : public solver::ForceContributor {
   double angle_, fx_, fy_, h_;
 };
 
+// The FE housing alone, as the fit runs it: it reads motions only, so no energy terms.
+BearingModelOptions HousingOnly(BearingModelOptions options) {
+  options.housing_only = true;
+  options.energy_books = false;
+  return options;
+}
+
 // The sensor path's impulse responses (see HousingFit::sensor_response).
 void ProbeSensorResponse(const Scene& fs, const BearingModelOptions& options, HousingFit* fit) {
   const LumpedOptions& lo = options.lumped;
-  BearingModelOptions o = options;
-  o.housing_only = true;
-  o.energy_books = false;  // the fit reads motions only
+  const BearingModelOptions o = HousingOnly(options);
   constexpr double kForce = 1000.0;
   const double h = 1.0 / lo.sensor_sample_hz, load_line = -0.5 * kPi;
   const int n = std::max(8, static_cast<int>(std::lround(lo.sensor_response_s / h)));
@@ -199,9 +204,7 @@ HousingFit ComputeHousingFit(const Scene& scene, const BearingModelOptions& opti
   const double load_angle[2] = {0.0, -0.5 * kPi};
   std::vector<std::vector<double>> channel_disp(2);
   for (int d = 0; d < 2; ++d) {
-    BearingModelOptions o = options;
-    o.housing_only = true;
-    o.energy_books = false;  // the fit reads motions only
+    const BearingModelOptions o = HousingOnly(options);
     Scene s = fs;
     s.damping.ratio = lo.fit_damping_ratio;
     s.damping.reference_hz = 3000.0;
@@ -243,12 +246,7 @@ HousingFit ComputeHousingFit(const Scene& scene, const BearingModelOptions& opti
     }
   }
   // Each channel's gain from the load case along its own direction.
-  FeBearingModel probe(fs, [&] {
-    BearingModelOptions o = options;
-    o.housing_only = true;
-    o.energy_books = false;  // the fit reads motions only
-    return o;
-  }());
+  FeBearingModel probe(fs, HousingOnly(options));
   const auto& channels = probe.sensor_channels();
   for (size_t k = 0; k < channels.size(); ++k)
     fit.sensor_gain.push_back(channel_disp[channels[k].direction == Axis::kX ? 0 : 1][k]);

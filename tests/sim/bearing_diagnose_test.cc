@@ -172,8 +172,7 @@ TEST(LumpedDiagnoseTest, HealthyBearingWithoutTheContactDampingStepIsHealthy) {
     std::vector<dsp::Verdict> v;
     for (auto axis : {sim::AccelerationAxis::kVertical, sim::AccelerationAxis::kHorizontal}) {
       spallkit::Record r = sim::ToRecord(simulation, axis);
-      r.samples.erase(r.samples.begin(),
-                      r.samples.begin() + static_cast<long>(0.05 * r.sample_rate_hz));
+      spallkit::DropStart(&r, 0.05);
       v.push_back(dsp::Diagnose(r, scene.geometry.bearing, shaft_hz).verdict);
       std::printf("contact damping %.2f, %s from 0.05 s: %s\n",
                   damping_ratio,
