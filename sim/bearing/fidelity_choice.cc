@@ -15,8 +15,8 @@ const std::vector<RungErrors>& MeasuredRungErrors() {
   // ladder --fe: Coulomb friction, 6000 rpm, 0.02 s), against the stored full FE at 0.25 mm, whose
   // cost is that file's reference run. FidelityChoiceTest checks these against the stored files.
   static const std::vector<RungErrors> kRungs = {
-      {Fidelity::kLumped, 0.0, 0.00235, 0.00273, 0.00271, 0.1060, 2.83},
-      {Fidelity::kHybrid, 2.0, 0.00529, 0.00373, 0.00372, 0.03392, 74.5},
+      {Fidelity::kLumped, 0.0, 0.00228, 0.00334, 0.00332, 0.1060, 1.94},
+      {Fidelity::kHybrid, 2.0, 0.00529, 0.00373, 0.00372, 0.03392, 61.9},
       {Fidelity::kFe, 1.0, 0.2885, 0.00602, 0.00593, 0.02373, 3649.0},
       {Fidelity::kFe, 0.5, 0.4124, 0.00516, 0.00509, 0.02072, 6662.0},
       {Fidelity::kFe, 0.25, 0.0, 0.0, 0.0, 0.0, 57925.0, true},

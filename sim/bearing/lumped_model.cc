@@ -300,8 +300,11 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
                      std::to_string(fit_.sensor_gain.size()) + " sensor channels, the scene " +
                      std::to_string(channels_.size()));
   // Stable step, 2 / omega (sqrt(1 + zeta^2) - zeta) for every oscillator:
-  //  - a roller: its translation normal to the races carries at most three Palmgren springs
-  //    k_n (two rim edges on one race, one on the other); along the orbit and in rotation the
+  //  - a roller: its translation normal to the races carries one Palmgren spring k_n per
+  //    race in a healthy bearing, up to three in a spall passage (two rim edges on one race,
+  //    one on the other), so a spalled bearing's steps are taken with three (its long step is
+  //    set by the energy error of the contacts' ringing, not by stability: see below). Along
+  //    the orbit and in rotation the
   //    stick springs k_t = ratio k_n (two on one race, one on the other) on rim points of a disc
   //    (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the cage wall k_c on the translation.
   //    The hybrid's bound 6 (k_n + k_t) / m is the sum of the two, 1.8x in omega^2; the rigid
@@ -325,11 +328,12 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
     const double k_rim = scene_.friction.model == contact::TractionModel::kEhl
                              ? kc * (1.0 + 3.3 * ratio)
                              : 7.0 * ratio * kn + kc;
-    const double omega = std::sqrt(std::max(3.0 * kn, k_rim) / m_min);
     const double zeta = options_.hybrid.contact_damping_ratio;
-    const double limit = solver::DampedStableStep(omega, zeta);
-    dt_stable_ = safety * limit;
-    dt_spall_ = options_.lumped.spall_time_step_safety * limit;
+    auto limit = [&](double springs) {
+      return solver::DampedStableStep(std::sqrt(std::max(springs * kn, k_rim) / m_min), zeta);
+    };
+    dt_stable_ = safety * limit(spalled_.empty() ? 2.0 : 3.0);
+    dt_spall_ = options_.lumped.spall_time_step_safety * limit(3.0);
   }
   if (!fit_.sensor_response.empty()) {
     for (auto& h : history_) h.assign(fit_.sensor_response[0][0].size(), 0.0);
