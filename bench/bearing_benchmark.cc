@@ -62,13 +62,15 @@ BENCHMARK(BM_HybridSimulatedMs)
 // friction at 0.15 / 0.12; 1: the paper's 0.01 / 0.005 with the lubricant traction law (the main
 // job's friction and the ladder's), whose race contacts have no stick spring to limit the step.
 // Second argument: the energy books kept (1, as `spall simulate` does by default) or not (0, a
-// scene without the energy output and the energy guard).
+// scene without the energy output and the energy guard). Third: the scene's spall (1) or the
+// same bearing healthy (0, `defects=[]`: no passages, the long step on two springs).
 void BM_LumpedSimulatedSecond(benchmark::State& bs) {
   const std::vector<std::string> friction =
       bs.range(0) == 0
           ? std::vector<std::string>{"friction.mu_static=0.15", "friction.mu_dynamic=0.12"}
           : std::vector<std::string>{"friction.model=ehl"};
   std::vector<std::string> sets = {"model.fidelity=lumped"};
+  if (bs.range(2) == 0) sets.push_back("defects=[]");
   sets.insert(sets.end(), friction.begin(), friction.end());
   const Scene scene = LoadScene(
       std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml", sets);
@@ -92,8 +94,8 @@ void BM_LumpedSimulatedSecond(benchmark::State& bs) {
   bs.counters["ns_per_step"] = 1e9 * wall / static_cast<double>(steps);
 }
 BENCHMARK(BM_LumpedSimulatedSecond)
-    ->ArgNames({"ehl", "books"})
-    ->ArgsProduct({{0, 1}, {1, 0}})
+    ->ArgNames({"ehl", "books", "spall"})
+    ->ArgsProduct({{0, 1}, {1, 0}, {1, 0}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
