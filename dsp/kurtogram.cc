@@ -108,8 +108,8 @@ void StoreSquaredEnvelopes(const std::complex<float>* env, size_t count, std::ve
 // e^{2 pi i j / m}, j < m, as a coarse step times a fine step, e^{2 pi i c F / m} e^{2 pi i f / m}
 // with j = c F + f, F = floor(sqrt(m)): ~2 sqrt(m) sin/cos, and tables small enough to stay in
 // cache (PlaceBins forms the products as it goes rather than writing and reading back a full table
-// of m roots per row, which leaves the cache on the large rows). Error ~1e-7, the level of the single-precision
-// transforms the roots feed.
+// of m roots per row, which leaves the cache on the large rows). Error ~1e-7, the level of the
+// single-precision transforms the roots feed.
 struct UnitRoots {
   int m = 0, fine = 1;
   std::vector<float> fr, fi, cr, ci;  // fine steps f < F, coarse steps c < ceil(m / F)

@@ -3,9 +3,10 @@
 // libm's log1p / exp are calls the compiler cannot vectorise without -ffast-math and glibc's
 // vector variants (libmvec), which a portable build does not assume. Eigen's array log/exp
 // vectorise but at the build's baseline width with no run-time dispatch, and are slower than these
-// on the pair-score loop (bench/diagnose_benchmark BM_BandFourCombs; docs/PERFORMANCE.md). These are branch-free versions of fdlibm's algorithms (Sun's e_log.c and
-// e_exp.c: the same reductions and minimax coefficients, errors below 1 ulp), restricted to the
-// ranges a detection statistic needs, so that there are no special cases to branch on:
+// on the pair-score loop (bench/diagnose_benchmark BM_BandFourCombs; docs/PERFORMANCE.md). These
+// are branch-free versions of fdlibm's algorithms (Sun's e_log.c and e_exp.c: the same reductions
+// and minimax coefficients, errors below 1 ulp), restricted to the ranges a detection statistic
+// needs, so that there are no special cases to branch on:
 //   LogAtLeastOne(x)   = ln x,      x in [1, 2^1023], finite;
 //   Log1pNonNegative(y) = ln(1 + y), y in [0, 2^1023], finite;
 //   ExpNonPositive(x)  = e^x,       x <= 0; e^x for x < -708 is returned as e^-708 (~3e-308).

@@ -256,11 +256,11 @@ TEST(HybridVerificationTest, SteelRingOnRigidAdapterLoadZone) {
 // intact half keeps it rolling: spin within 3 % of the healthy rollers' (6000 rpm, 40 ms).
 TEST(HybridVerificationTest, HalfLengthSpallKeepsRollingAtThePapersFriction) {
   FeBearingModel model(LoadScene(SceneFile(),
-                               {"model.fidelity=hybrid",
-                                "mesh.size_mm=2.0",
-                                "operation.speed_rpm=6000",
-                                "operation.ramp_s=0.002",
-                                "defects.0.length_mm=4.5"}));
+                                 {"model.fidelity=hybrid",
+                                  "mesh.size_mm=2.0",
+                                  "operation.speed_rpm=6000",
+                                  "operation.ramp_s=0.002",
+                                  "defects.0.length_mm=4.5"}));
   const RollerContacts& h = model.hybrid_rollers()->rollers();
   ASSERT_DOUBLE_EQ(h.spall_length_fraction(0), 0.5);
   // Mass properties: half healthy section, half notched section.
@@ -408,11 +408,11 @@ TEST(HybridVerificationTest, DefectiveRollerForceDropsToZeroWhenItsSpallMeetsARa
 TEST(FullFeVerificationTest, DefectiveRollerForceDropsToZeroEveryHalfTurnInTheLoadZone) {
   constexpr int kDefective = 11;
   FeBearingModel model(LoadScene(SceneFile(),
-                               SpallDropRun(kDefective,
-                                            {"mesh.size_mm=1.0",
-                                             "mesh.contact_size_mm=0.5",
-                                             "mesh.adapter_size_mm=2.0",
-                                             "solver.threads=1"})));
+                                 SpallDropRun(kDefective,
+                                              {"mesh.size_mm=1.0",
+                                               "mesh.contact_size_mm=0.5",
+                                               "mesh.adapter_size_mm=2.0",
+                                               "solver.threads=1"})));
   solver::ExplicitSolver& s = model.solver();
   s.Run(0.002);
   std::vector<double> drop_times;
@@ -504,11 +504,11 @@ TEST(HybridVerificationTest, SimulatedSignalCarriesRollerSpallAndCageRates) {
   const std::string h5 = dir + "/hybrid_diag.h5", csv = dir + "/hybrid_diag.csv";
   int code = 0;
   std::string out = RunSpall("simulate " + SceneFile() + " -o " + h5 + " --csv " + csv +
-                                   " --quiet --set model.fidelity=hybrid --set mesh.size_mm=2.0"
-                                   " --set operation.speed_rpm=6000 --set operation.ramp_s=0.005"
-                                   " --set run.duration_s=0.3 --set friction.mu_static=0.1"
-                                   " --set friction.mu_dynamic=0.08",
-                               &code);
+                                 " --quiet --set model.fidelity=hybrid --set mesh.size_mm=2.0"
+                                 " --set operation.speed_rpm=6000 --set operation.ramp_s=0.005"
+                                 " --set run.duration_s=0.3 --set friction.mu_static=0.1"
+                                 " --set friction.mu_dynamic=0.08",
+                             &code);
   ASSERT_EQ(code, 0) << out;
   std::printf("%s", out.c_str());
   out = RunSpall("diagnose " + csv + " --bearing N205EM --rpm 6000 --json", &code);
@@ -544,11 +544,11 @@ TEST(HybridVerificationTest, SimulatedSignalCarriesRollerSpallAndCageRates) {
     const std::string h5h = dir + "/hybrid_healthy.h5";
     const std::string o =
         RunSpall("simulate " + SceneFile() + " -o " + h5h +
-                       " --quiet --set model.fidelity=hybrid --set mesh.size_mm=2.0"
-                       " --set operation.speed_rpm=6000 --set operation.ramp_s=0.005"
-                       " --set run.duration_s=0.12 --set friction.mu_static=0.1"
-                       " --set friction.mu_dynamic=0.08 --set 'defects=[]'",
-                   &code);
+                     " --quiet --set model.fidelity=hybrid --set mesh.size_mm=2.0"
+                     " --set operation.speed_rpm=6000 --set operation.ramp_s=0.005"
+                     " --set run.duration_s=0.12 --set friction.mu_static=0.1"
+                     " --set friction.mu_dynamic=0.08 --set 'defects=[]'",
+                 &code);
     ASSERT_EQ(code, 0) << o;
     h5::File fh = h5::File::OpenReadOnly(h5h);
     const std::vector<double> th = fh.ReadDataset("/time"), ah = fh.ReadDataset("/signals/accel_y");
