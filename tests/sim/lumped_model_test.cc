@@ -349,6 +349,23 @@ TEST(LumpedModelTest, EnergyIsBalanced) {
   EXPECT_GT(step[1], 1.5 * step[0]);
 }
 
+// A healthy bearing has no spall passages and takes its long step on the stability limit of one
+// Palmgren spring per race (docs/BEARING_MODEL.md, "Stable step"), 0.9 of it: its energy balance
+// holds there with both friction laws (0.2 s of the paper scene without its spall).
+TEST(LumpedModelTest, HealthyBearingKeepsItsEnergyBalanceOnTheTwoSpringStep) {
+  for (const char* model : {"coulomb", "ehl"}) {
+    SCOPED_TRACE(model);
+    Simulation sim(
+        LumpedScene({"run.duration_s=0.2", "defects=[]", std::string("friction.model=") + model}),
+        {});
+    const SimulationSummary s = sim.Run();
+    ASSERT_TRUE(s.completed);
+    std::printf("healthy, %s: %s\n", model, s.BriefReport().c_str());
+    EXPECT_GT(s.energies.external, 0.1);
+    EXPECT_LT(s.energy_balance_error, 1e-3);
+  }
+}
+
 // The same balance at the paper study's speeds, where spall passages come 3-5x as often and the
 // stiff contact modes they excite ring through the steps between them: three defective rollers
 // at 4000 rpm and the narrow 0.46 mm spall at 6000 rpm (datasets/scenes, partial-length spalls),
