@@ -304,9 +304,9 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   //    race in a healthy bearing, up to three in a spall passage (two rim edges on one race,
   //    one on the other), so a spalled bearing's steps are taken with three (its long step is
   //    set by the energy error of the contacts' ringing, not by stability: see below). Along
-  //    the orbit and in rotation the
-  //    stick springs k_t = ratio k_n (two on one race, one on the other) on rim points of a disc
-  //    (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the cage wall k_c on the translation.
+  //    the orbit and in rotation the stick springs k_t = ratio k_n (two on one race, one on
+  //    the other) on rim points of a disc (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the
+  //    cage wall k_c on the translation.
   //    The hybrid's bound 6 (k_n + k_t) / m is the sum of the two, 1.8x in omega^2; the rigid
   //    ring's mass is large against the roller's, so the ring side does not limit.
   //    With friction.model = "ehl" the race contacts have no stick spring (the traction curve
