@@ -28,21 +28,22 @@ struct RungErrors {
   double mesh_mm = 0;  // the mesh it was measured on (0: the lumped model, which has none)
   double f_b = 0, f_c = 0, cage_slip = 0, roller_load = 0;
   double wall_s_per_simulated_s = 0;  // one thread
-  // The finest run of its ladder (the full FE at 0.25 mm): nothing finer measures its errors,
-  // which are 0 here by definition, not by measurement.
+  // The finest run of its ladder (the hybrid at 0.5 mm, the full FE at 0.25 mm): nothing finer
+  // measures its errors, which are 0 here by definition, not by measurement.
   bool reference = false;
 };
 
-// The ladders' measured bounds, cheapest rung first: the lumped model and the hybrid at 2 mm
-// from the quick ladder (against hybrid 1 mm, the paper's friction with the lubricant traction
-// law), the full FE at 1 and 0.5 mm from the full-FE sub-ladder (against the full FE at 0.25 mm,
-// Coulomb friction), then that reference. The commands that reproduce them are in
-// docs/PERFORMANCE.md.
+// The ladders' measured bounds, cheapest rung first: the lumped model and the hybrid at 2 and
+// 1 mm from the full ladder (against the hybrid at 0.5 mm, its reference; the paper's friction
+// with the lubricant traction law), then that reference; the full FE at 1 and 0.5 mm from the
+// full-FE sub-ladder (against the full FE at 0.25 mm, Coulomb friction), then that reference.
+// The commands that reproduce them are in docs/PERFORMANCE.md.
 const std::vector<RungErrors>& MeasuredRungErrors();
 
 // The bounds of a scene run at `fidelity` on the scene's mesh (mesh.size_mm), or nullopt where no
-// ladder measured that model on such a mesh: the lumped model's own; the hybrid's 2 mm bounds for
-// a mesh of 2 mm or finer; the full FE's at a measured mesh, between two measured meshes the
+// ladder measured that model on such a mesh: the lumped model's own; for the hybrid on a mesh of
+// 2 mm or finer the largest error measured on its meshes (they do not shrink with the mesh within
+// the short runs' scatter); the full FE's at a measured mesh, between two measured meshes the
 // larger error of the two (its errors do not shrink monotonically with the mesh), at 0.25 mm or
 // finer the reference's. A mesh coarser than the coarsest measured one has no bound.
 std::optional<RungErrors> RungBoundsFor(const Scene& scene, Fidelity fidelity);
