@@ -109,10 +109,9 @@ ValidationReport ValidateOnFiles(const std::vector<std::string>& files,
     RecordOptions ro;
     ro.channel = options.channel;
     Record clean = ReadRecord(path, ro);
-    const size_t skip = static_cast<size_t>(std::llround(options.skip_s * clean.sample_rate_hz));
-    if (skip + dsp::EnvelopeAnalyzer::kMinSamples >= clean.samples.size())
+    if (!DropStart(&clean, options.skip_s) ||
+        clean.samples.size() <= dsp::EnvelopeAnalyzer::kMinSamples)
       throw InputError(path + ": record shorter than skip_s");
-    DropStart(&clean, options.skip_s);
 
     const BearingGeometry& g = scene.geometry.bearing;
     const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);

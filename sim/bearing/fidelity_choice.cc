@@ -27,6 +27,15 @@ const std::vector<RungErrors>& MeasuredRungErrors() {
   return kRungs;
 }
 
+namespace {
+// `r`'s errors raised to `other`'s where those are larger.
+void KeepLargerErrors(RungErrors* r, const RungErrors& other) {
+  r->f_b = std::max(r->f_b, other.f_b), r->f_c = std::max(r->f_c, other.f_c);
+  r->cage_slip = std::max(r->cage_slip, other.cage_slip);
+  r->roller_load = std::max(r->roller_load, other.roller_load);
+}
+}  // namespace
+
 std::optional<RungErrors> RungBoundsFor(const Scene& scene, Fidelity fidelity) {
   constexpr double kSameMesh = 1e-9;  // mm
   const double mesh_mm = scene.mesh.size_m * 1e3;
@@ -48,10 +57,7 @@ std::optional<RungErrors> RungBoundsFor(const Scene& scene, Fidelity fidelity) {
     RungErrors r = measured.front();
     for (const RungErrors& m : measured) {
       if (m.mesh_mm <= mesh_mm + kSameMesh) r.wall_s_per_simulated_s = m.wall_s_per_simulated_s;
-      if (m.reference) continue;
-      r.f_b = std::max(r.f_b, m.f_b), r.f_c = std::max(r.f_c, m.f_c);
-      r.cage_slip = std::max(r.cage_slip, m.cage_slip);
-      r.roller_load = std::max(r.roller_load, m.roller_load);
+      if (!m.reference) KeepLargerErrors(&r, m);
     }
     r.mesh_mm = mesh_mm, r.reference = false;
     return r;
@@ -64,9 +70,7 @@ std::optional<RungErrors> RungBoundsFor(const Scene& scene, Fidelity fidelity) {
     if (mesh_mm < coarse.mesh_mm) {
       RungErrors r = coarse;  // between two measured meshes: the larger error of the two
       r.mesh_mm = mesh_mm, r.reference = false;
-      r.f_b = std::max(fine.f_b, coarse.f_b), r.f_c = std::max(fine.f_c, coarse.f_c);
-      r.cage_slip = std::max(fine.cage_slip, coarse.cage_slip);
-      r.roller_load = std::max(fine.roller_load, coarse.roller_load);
+      KeepLargerErrors(&r, fine);
       r.wall_s_per_simulated_s = fine.wall_s_per_simulated_s;  // the finer mesh's cost, at most
       return r;
     }
