@@ -387,7 +387,7 @@ TEST(LumpedModelTest, EnergyIsBalancedAtThePaperStudysSpeeds) {
     const SimulationSummary s = sim.Run();
     ASSERT_TRUE(s.completed);
     std::printf("%s: %s\n", name, s.BriefReport().c_str());
-    EXPECT_LT(s.energy_balance_error, 2e-3);  // measured 0.10 % and 0.15 %
+    EXPECT_LT(s.energy_balance_error, 2e-3);  // measured 0.14 % and 0.15 %
   }
 }
 
