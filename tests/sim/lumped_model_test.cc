@@ -392,13 +392,14 @@ TEST(LumpedModelTest, EnergyIsBalancedAtThePaperStudysSpeeds) {
 }
 
 // The outputs a user reads are converged at the default steps: against the paper scene run at a
-// third of the long step and a sixth of the short one (2.3x the steps), over 0.3 s with the
-// traction law, the cage speed agrees within 0.1 % and the acceleration RMS within 15 % (measured
-// 0.02 %, 8 % and 7 %); the spall's impacts are chaotic, so one short run's RMS and kurtosis move
-// with any change at round-off (over 1 s and four starts of the spall, docs/BEARING_MODEL.md "The
-// lumped model", the default's and the fine run's RMS differ by 1-8 %, their kurtosis by 2-25 %,
-// as the previous, 1.7x slower rule's did). The energy balance, which grows as the short step
-// squared, is what the finer steps buy.
+// third of the long step and a sixth of the short one (2.3x to 3x the steps), over 0.3 s with the
+// traction law, the cage speed agrees within 0.3 % and the acceleration RMS within 15 % (measured
+// 0.03 %, 4 % and 2 %). The spall's impacts are chaotic, so one short run's cage speed, RMS and
+// kurtosis move with any change at round-off: over 1 s and four starts of the spall
+// (docs/BEARING_MODEL.md, "The lumped model") the default's cage speed lies up to 0.11 % from the
+// fine run's, its RMS up to 6 %, its kurtosis up to 16 %, as the previous, 1.8x slower rule's did
+// (0.06 %, 7 %, 24 %). The energy balance, which grows as the short step squared, is what the
+// finer steps buy.
 TEST(LumpedModelTest, OutputsAreConvergedAtTheDefaultSteps) {
   struct Out {
     double cage = 0, rms[2] = {0, 0}, kurtosis[2] = {0, 0}, energy = 0;  // kurtosis: printed
@@ -456,7 +457,7 @@ TEST(LumpedModelTest, OutputsAreConvergedAtTheDefaultSteps) {
       fine.kurtosis[1],
       100 * dflt.energy,
       100 * fine.energy);
-  EXPECT_NEAR(dflt.cage / fine.cage, 1.0, 1e-3);
+  EXPECT_NEAR(dflt.cage / fine.cage, 1.0, 3e-3);
   for (int c = 0; c < 2; ++c) EXPECT_NEAR(dflt.rms[c] / fine.rms[c], 1.0, 0.15) << c;
   EXPECT_LT(fine.energy, dflt.energy);  // what the finer steps buy
 }
