@@ -397,7 +397,7 @@ TEST(LumpedModelTest, EnergyIsBalancedAtThePaperStudysSpeeds) {
 // 0.03 %, 4 % and 2 %). The spall's impacts are chaotic, so one short run's cage speed, RMS and
 // kurtosis move with any change at round-off: over 1 s and four starts of the spall
 // (docs/BEARING_MODEL.md, "The lumped model") the default's cage speed lies up to 0.11 % from the
-// fine run's, its RMS up to 6 %, its kurtosis up to 16 %, as the previous, 1.8x slower rule's did
+// fine run's, its RMS up to 6 %, its kurtosis up to 14 %, as the previous, 1.8x slower rule's did
 // (0.06 %, 7 %, 24 %). The energy balance, which grows as the short step squared, is what the
 // finer steps buy.
 TEST(LumpedModelTest, OutputsAreConvergedAtTheDefaultSteps) {
