@@ -303,15 +303,15 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   //  - a roller: its translation normal to the races carries one Palmgren spring k_n per
   //    race, up to three in a spall passage (two rim edges on one race, one on the other): the
   //    long step is taken on the limit of two, the short one of the ramps and loaded passages
-  //    on the limit of three (an unloaded passage's rim edges carry a few newtons, where the
-  //    Palmgren stiffness, ~Q^0.1, is below half its bound). Along the orbit and in rotation
-  //    the stick springs k_t = ratio k_n (two on one race, one on the other) on rim points of a
-  //    disc (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the cage wall k_c on the
-  //    translation.
-  //    The hybrid's bound 6 (k_n + k_t) / m is the sum of the two, 1.8x in omega^2; the rigid
-  //    ring's mass is large against the roller's, so the ring side does not limit.
-  //    With friction.model = "ehl" the race contacts have no stick spring (the traction curve
-  //    of the slide-to-roll ratio, implicit in the slip, is stable at any step): only the
+  //    on the limit of three (a passage below spall_step_min_load_fraction of the mean roller
+  //    load, 15 N on the paper scene, needs no more: the Palmgren stiffness goes as Q^0.1, so
+  //    three springs there are softer than two at the bound, twice the radial load). Along the
+  //    orbit and in rotation the stick springs k_t = ratio k_n (two on one race, one on the other)
+  //    on rim points of a disc (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the cage wall k_c
+  //    on the translation. The hybrid's bound 6 (k_n + k_t) / m is the sum of the two, 1.8x in
+  //    omega^2; the rigid ring's mass is large against the roller's, so the ring side does not
+  //    limit. With friction.model = "ehl" the race contacts have no stick spring (the traction
+  //    curve of the slide-to-roll ratio, implicit in the slip, is stable at any step): only the
   //    pocket walls' (k_c, and their stick springs 3.3 ratio k_c on the rim).
   //  - the ring oscillators, with their damping.
   for (int j = 0; j < rollers_.num_rollers(); ++j)
