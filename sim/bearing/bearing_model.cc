@@ -18,8 +18,10 @@ bool LumpedOptions::IsValid(std::string* error) const {
   if (!(fit_damping_ratio > 0)) return fail("lumped model: fit_damping_ratio must be > 0");
   if (!(time_step_safety > 0 && time_step_safety <= 1))
     return fail("lumped model: time_step_safety must be in (0, 1]");
-  if (!(spall_time_step_safety > 0 && spall_time_step_safety <= time_step_safety))
-    return fail("lumped model: spall_time_step_safety must be in (0, time_step_safety]");
+  if (!(spalled_time_step_safety > 0 && spalled_time_step_safety <= time_step_safety))
+    return fail("lumped model: spalled_time_step_safety must be in (0, time_step_safety]");
+  if (!(spall_time_step_safety > 0 && spall_time_step_safety <= spalled_time_step_safety))
+    return fail("lumped model: spall_time_step_safety must be in (0, spalled_time_step_safety]");
   if (!(spall_step_min_load_fraction >= 0 && spall_step_min_load_fraction <= 1))
     return fail("lumped model: spall_step_min_load_fraction must be in [0, 1]");
   if (!(spall_step_linger_s >= 0 && spall_step_linger_s <= 0.1))

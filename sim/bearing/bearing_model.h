@@ -31,21 +31,21 @@ struct LumpedOptions {
   // (fraction of critical at the housing's first radial mode, mass proportional).
   double fit_duration_s = 4e-3;
   double fit_damping_ratio = 0.7;
-  // Stable-step safety on the roller contacts (the FE models use the solver's): the long step,
-  // on the limit of one Palmgren spring per race (every bearing between its spall passages);
-  // and the short one, on the limit of three (a spall passage's two rim edges on one race), taken
-  // while the speed and load ramp up (t < twice the longer ramp: the rollers are spun up by
-  // sliding) and in loaded spall passages: a spalled roller's spall faces a race within
-  // spall_step_margin_rad of roller rotation while it turns relative to its orbit faster than
-  // spall_step_min_spin_ratio x the shaft's speed, from the moment in the passage it carries
-  // spall_step_min_load_fraction of the mean roller load F_r / Z (an unloaded roller's passage
-  // strikes nothing) until spall_step_linger_s after the passage. The ramps, the rim edges'
-  // contact and the exit impact lose energy as the short step squared, nearly all the model's
-  // energy error, while the signal, the friction, slip and kinematics are converged at it
-  // (docs/BEARING_MODEL.md, "The lumped model": 0.35 keeps the paper scene's simulated second
-  // within a second of wall time, at 0.28 % energy balance).
+  // Stable-step safety on the roller contacts (the FE models use the solver's) of a healthy
+  // bearing, and of one with spalled rollers between their passages (their impacts keep the
+  // contacts' stiff modes ringing, whose error, and the error of every change of the step,
+  // grow as the step squared); and the safety while the speed and load ramp up (t < twice the
+  // longer ramp: the rollers are spun up by sliding) and in loaded spall passages: a spalled
+  // roller's spall faces a race within spall_step_margin_rad of roller rotation while it turns
+  // relative to its orbit faster than spall_step_min_spin_ratio x the shaft's speed, from the
+  // moment in the passage it carries spall_step_min_load_fraction of the mean roller load
+  // F_r / Z (an unloaded roller's passage strikes nothing) until spall_step_linger_s after the
+  // passage. The ramps, the rim edges' contact and the exit impact lose energy as the step
+  // squared, nearly all the model's energy error, while the friction, slip and kinematics are
+  // converged at the larger step (docs/BEARING_MODEL.md, "The lumped model").
   double time_step_safety = 0.9;
-  double spall_time_step_safety = 0.35;
+  double spalled_time_step_safety = 0.7;
+  double spall_time_step_safety = 0.15;
   double spall_step_margin_rad = 0.02;
   double spall_step_min_spin_ratio = 0.1;
   double spall_step_min_load_fraction = 0.02;

@@ -301,22 +301,23 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
                      std::to_string(channels_.size()));
   // Stable step, 2 / omega (sqrt(1 + zeta^2) - zeta) for every oscillator:
   //  - a roller: its translation normal to the races carries one Palmgren spring k_n per
-  //    race, up to three in a spall passage (two rim edges on one race, one on the other): the
-  //    long step is taken on the limit of two, the short one of the ramps and loaded passages
-  //    on the limit of three (a passage below spall_step_min_load_fraction of the mean roller
-  //    load, 15 N on the paper scene, needs no more: the Palmgren stiffness goes as Q^0.1, so
-  //    three springs there are softer than two at the bound, twice the radial load). Along the
-  //    orbit and in rotation the stick springs k_t = ratio k_n (two on one race, one on the other)
-  //    on rim points of a disc (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the cage wall k_c
-  //    on the translation. The hybrid's bound 6 (k_n + k_t) / m is the sum of the two, 1.8x in
-  //    omega^2; the rigid ring's mass is large against the roller's, so the ring side does not
-  //    limit. With friction.model = "ehl" the race contacts have no stick spring (the traction
-  //    curve of the slide-to-roll ratio, implicit in the slip, is stable at any step): only the
+  //    race in a healthy bearing, up to three in a spall passage (two rim edges on one race,
+  //    one on the other), so a spalled bearing's steps are taken with three (its long step is
+  //    set by the energy error of the contacts' ringing, not by stability: see below). Along
+  //    the orbit and in rotation the stick springs k_t = ratio k_n (two on one race, one on
+  //    the other) on rim points of a disc (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the
+  //    cage wall k_c on the translation.
+  //    The hybrid's bound 6 (k_n + k_t) / m is the sum of the two, 1.8x in omega^2; the rigid
+  //    ring's mass is large against the roller's, so the ring side does not limit.
+  //    With friction.model = "ehl" the race contacts have no stick spring (the traction curve
+  //    of the slide-to-roll ratio, implicit in the slip, is stable at any step): only the
   //    pocket walls' (k_c, and their stick springs 3.3 ratio k_c on the rim).
   //  - the ring oscillators, with their damping.
+  // A bearing with spalled rollers takes the smaller safety between its passages.
   for (int j = 0; j < rollers_.num_rollers(); ++j)
     if (rollers_.profile(j).spalled) spalled_.push_back(j);
-  const double safety = options_.lumped.time_step_safety;
+  const double safety = spalled_.empty() ? options_.lumped.time_step_safety
+                                         : options_.lumped.spalled_time_step_safety;
   {
     const double kn = rollers_.bound_normal_stiffness();
     const double ratio = options_.hybrid.tangential_stiffness_ratio;
@@ -331,7 +332,7 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
     auto limit = [&](double springs) {
       return solver::DampedStableStep(std::sqrt(std::max(springs * kn, k_rim) / m_min), zeta);
     };
-    dt_stable_ = safety * limit(2.0);
+    dt_stable_ = safety * limit(spalled_.empty() ? 2.0 : 3.0);
     dt_spall_ = options_.lumped.spall_time_step_safety * limit(3.0);
   }
   if (!fit_.sensor_response.empty()) {
