@@ -3,7 +3,8 @@
 // speed ramp (the contacts are all live), for housing meshes of 2.0, 1.0, 0.5 and 0.25 mm. One
 // iteration = 0.1 ms of simulated time; the counters give ms of wall per simulated ms, the
 // time step and ns per element-cycle (elements + hybrid contacts + tie + damping).
-// BM_LumpedSimulatedSecond: the lumped model, wall seconds per simulated second at 1200 rpm.
+// BM_LumpedSimulatedSecond: the lumped model, wall seconds per simulated second at 1200 rpm
+// (arguments: traction law or Coulomb, energy books, spall, [solver] lumped_step = "fast").
 // Run: build-<you>/bench/bearing_benchmark [--benchmark_min_time=2]
 #include <benchmark/benchmark.h>
 
@@ -71,6 +72,7 @@ void BM_LumpedSimulatedSecond(benchmark::State& bs) {
           : std::vector<std::string>{"friction.model=ehl"};
   std::vector<std::string> sets = {"model.fidelity=lumped"};
   if (bs.range(2) == 0) sets.push_back("defects=[]");
+  if (bs.range(3) != 0) sets.push_back("solver.lumped_step=fast");
   sets.insert(sets.end(), friction.begin(), friction.end());
   const Scene scene = LoadScene(
       std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml", sets);
@@ -94,8 +96,9 @@ void BM_LumpedSimulatedSecond(benchmark::State& bs) {
   bs.counters["ns_per_step"] = 1e9 * wall / static_cast<double>(steps);
 }
 BENCHMARK(BM_LumpedSimulatedSecond)
-    ->ArgNames({"ehl", "books", "spall"})
-    ->ArgsProduct({{0, 1}, {1, 0}, {1, 0}})
+    ->ArgNames({"ehl", "books", "spall", "fast"})
+    ->ArgsProduct({{0, 1}, {1, 0}, {1, 0}, {0}})
+    ->ArgsProduct({{0, 1}, {1, 0}, {1}, {1}})  // [solver] lumped_step = "fast", spalled
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

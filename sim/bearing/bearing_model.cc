@@ -22,6 +22,8 @@ bool LumpedOptions::IsValid(std::string* error) const {
     return fail("lumped model: spalled_time_step_safety must be in (0, time_step_safety]");
   if (!(spall_time_step_safety > 0 && spall_time_step_safety <= spalled_time_step_safety))
     return fail("lumped model: spall_time_step_safety must be in (0, spalled_time_step_safety]");
+  if (!(fast_spall_time_step_safety > 0 && fast_spall_time_step_safety <= time_step_safety))
+    return fail("lumped model: fast_spall_time_step_safety must be in (0, time_step_safety]");
   if (!(spall_step_min_load_fraction >= 0 && spall_step_min_load_fraction <= 1))
     return fail("lumped model: spall_step_min_load_fraction must be in [0, 1]");
   if (!(spall_step_linger_s >= 0 && spall_step_linger_s <= 0.1))
@@ -51,11 +53,14 @@ bool BearingModelOptions::IsValid(std::string* error) const {
 }
 
 namespace {
-// The options with what the scene sets for them: [model] contact_damping, for every contact.
+// The options with what the scene sets for them: [model] contact_damping, for every contact;
+// [solver] lumped_step.
 BearingModelOptions WithSceneSettings(BearingModelOptions options, const Scene& scene) {
   if (scene.model.contact_damping)
     options.contact_damping_ratio = options.hybrid.contact_damping_ratio =
         *scene.model.contact_damping;
+  if (scene.solver.lumped_step != LumpedStep::kAccurate)
+    options.lumped.step_rule = scene.solver.lumped_step;
   return options;
 }
 }  // namespace

@@ -303,7 +303,10 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   //  - a roller: its translation normal to the races carries one Palmgren spring k_n per
   //    race in a healthy bearing, up to three in a spall passage (two rim edges on one race,
   //    one on the other), so a spalled bearing's steps are taken with three (its long step is
-  //    set by the energy error of the contacts' ringing, not by stability: see below). Along
+  //    set by the energy error of the contacts' ringing, not by stability: see below); under
+  //    the fast rule its long step is on two (a passage below spall_step_min_load_fraction of
+  //    the mean roller load needs no more: the Palmgren stiffness goes as Q^0.1, so three
+  //    springs there are softer than two at the bound, twice the radial load). Along
   //    the orbit and in rotation the stick springs k_t = ratio k_n (two on one race, one on
   //    the other) on rim points of a disc (I = m r^2 / 2) give omega^2 = 6.6 k_t / m, plus the
   //    cage wall k_c on the translation.
@@ -313,11 +316,13 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   //    of the slide-to-roll ratio, implicit in the slip, is stable at any step): only the
   //    pocket walls' (k_c, and their stick springs 3.3 ratio k_c on the rim).
   //  - the ring oscillators, with their damping.
-  // A bearing with spalled rollers takes the smaller safety between its passages.
+  // A bearing with spalled rollers takes the smaller safety between its passages, but under the
+  // fast rule (LumpedOptions::step_rule).
   for (int j = 0; j < rollers_.num_rollers(); ++j)
     if (rollers_.profile(j).spalled) spalled_.push_back(j);
-  const double safety = spalled_.empty() ? options_.lumped.time_step_safety
-                                         : options_.lumped.spalled_time_step_safety;
+  const bool fast = options_.lumped.step_rule == LumpedStep::kFast;
+  const double safety = spalled_.empty() || fast ? options_.lumped.time_step_safety
+                                                 : options_.lumped.spalled_time_step_safety;
   {
     const double kn = rollers_.bound_normal_stiffness();
     const double ratio = options_.hybrid.tangential_stiffness_ratio;
@@ -332,8 +337,10 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
     auto limit = [&](double springs) {
       return solver::DampedStableStep(std::sqrt(std::max(springs * kn, k_rim) / m_min), zeta);
     };
-    dt_stable_ = safety * limit(spalled_.empty() ? 2.0 : 3.0);
-    dt_spall_ = options_.lumped.spall_time_step_safety * limit(3.0);
+    dt_stable_ = safety * limit(spalled_.empty() || fast ? 2.0 : 3.0);
+    dt_spall_ = (fast ? options_.lumped.fast_spall_time_step_safety
+                      : options_.lumped.spall_time_step_safety) *
+                limit(3.0);
   }
   if (!fit_.sensor_response.empty()) {
     for (auto& h : history_) h.assign(fit_.sensor_response[0][0].size(), 0.0);
@@ -549,7 +556,8 @@ std::string LumpedBearingModel::Describe() const {
      << r.contact_stiffness() / std::pow(1e3, 10.0 / 9.0) * 1e-3 << " kN/mm^(10/9), roller mass "
      << r.roller_mass(0) * 1e3 << " g, cage " << r.cage_mass() * 1e3 << " g, inner ring "
      << r.shaft_mass() * 1e3 << " g; step " << dt_stable_ * 1e9 << " ns (" << dt_spall_ * 1e9
-     << " ns in the ramps and loaded spall passages)";
+     << " ns in the ramps and loaded spall passages; " << LumpedStepName(options_.lumped.step_rule)
+     << " step rule)";
   os << "\nhousing fit (" << options_.lumped.fit_mesh_size_m * 1e3 << " mm FE housing, "
      << (fit_.fit_wall_s > 0 ? "computed in " : "cached");
   if (fit_.fit_wall_s > 0) os << fit_.fit_wall_s << " s";

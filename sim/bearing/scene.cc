@@ -81,6 +81,8 @@ constexpr NamedValue<RaceContact> kRaceContactNames[] = {{RaceContact::kFaceted,
                                                          {RaceContact::kSmooth, "smooth"}};
 constexpr NamedValue<StartPose> kStartPoseNames[] = {{StartPose::kSeated, "seated"},
                                                      {StartPose::kCentred, "centred"}};
+constexpr NamedValue<LumpedStep> kLumpedStepNames[] = {{LumpedStep::kAccurate, "accurate"},
+                                                       {LumpedStep::kFast, "fast"}};
 constexpr NamedValue<Axis> kAxisNames[] = {{Axis::kX, "x"}, {Axis::kY, "y"}};
 constexpr NamedValue<Output> kOutputNames[] = {{Output::kContactForces, "contact_forces"},
                                                {Output::kAcceleration, "acceleration"},
@@ -579,6 +581,7 @@ void ReadSolver(Section s, SceneSolver* solver) {
   solver->checkpoint_interval_s = s.Number("checkpoint_interval_s", 0.0, kNonNegative);
   solver->max_energy_error_percent =
       s.Number("max_energy_error_percent", 5.0, {0.0, 100.0, false, false});
+  solver->lumped_step = Choice(s, "lumped_step", LumpedStep::kAccurate, kLumpedStepNames);
   s.RejectUnknown();
 }
 
@@ -601,6 +604,10 @@ bool ParseRaceContact(const std::string& name, RaceContact* race_contact) {
 const char* StartPoseName(StartPose start) { return NameOf(kStartPoseNames, start); }
 bool ParseStartPose(const std::string& name, StartPose* start) {
   return ParseName(kStartPoseNames, name, start);
+}
+const char* LumpedStepName(LumpedStep step) { return NameOf(kLumpedStepNames, step); }
+bool ParseLumpedStep(const std::string& name, LumpedStep* step) {
+  return ParseName(kLumpedStepNames, name, step);
 }
 
 bool Asks(const std::vector<Output>& outputs, Output output) {

@@ -271,6 +271,17 @@ TEST(Scene, ModelChoicesAreEnumsNamedAsInTheSceneFile) {
                      "\"full\"");
   ExpectOneLineError(ErrorOf("[model]\nadapter = \"soft\"\n"),
                      "model.adapter: expected \"elastic\" or \"rigid\", got \"soft\"");
+  // The lumped model's step rule: "accurate" by default.
+  EXPECT_EQ(ParseScene("", "d.toml").solver.lumped_step, LumpedStep::kAccurate);
+  EXPECT_EQ(ParseScene("[solver]\nlumped_step = \"fast\"\n", "f.toml").solver.lumped_step,
+            LumpedStep::kFast);
+  for (LumpedStep l : {LumpedStep::kAccurate, LumpedStep::kFast}) {
+    LumpedStep back = LumpedStep::kAccurate;
+    EXPECT_TRUE(ParseLumpedStep(LumpedStepName(l), &back));
+    EXPECT_EQ(back, l);
+  }
+  ExpectOneLineError(ErrorOf("[solver]\nlumped_step = \"quick\"\n"),
+                     "solver.lumped_step: expected \"accurate\" or \"fast\", got \"quick\"");
 }
 
 // [run] outputs: enums in the file's order, the default set when absent, names round-trip.
