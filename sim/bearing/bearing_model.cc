@@ -53,14 +53,11 @@ bool BearingModelOptions::IsValid(std::string* error) const {
 }
 
 namespace {
-// The options with what the scene sets for them: [model] contact_damping, for every contact;
-// [solver] lumped_step.
+// The options with what the scene sets for them: [model] contact_damping, for every contact.
 BearingModelOptions WithSceneSettings(BearingModelOptions options, const Scene& scene) {
   if (scene.model.contact_damping)
     options.contact_damping_ratio = options.hybrid.contact_damping_ratio =
         *scene.model.contact_damping;
-  if (scene.solver.lumped_step != LumpedStep::kAccurate)
-    options.lumped.step_rule = scene.solver.lumped_step;
   return options;
 }
 }  // namespace

@@ -46,14 +46,13 @@ struct LumpedOptions {
   double time_step_safety = 0.9;
   double spalled_time_step_safety = 0.7;
   double spall_time_step_safety = 0.15;
-  // The step rule ([solver] lumped_step). kFast: every bearing takes time_step_safety of the
-  // two-spring limit between its passages (one Palmgren spring per race: a passage below
-  // spall_step_min_load_fraction of the mean roller load needs no more, the stiffness going as
-  // Q^0.1) and fast_spall_time_step_safety of the three-spring limit in the ramps and loaded
-  // passages: the paper scene's simulated second in about 1.8x fewer steps, its energy balance
-  // 0.28 % against 0.074 %, the signal, cage speed and slip within the same run-to-run scatter
-  // (docs/BEARING_MODEL.md, "The lumped model").
-  LumpedStep step_rule = LumpedStep::kAccurate;
+  // The fast step rule (the scene's [solver] lumped_step = "fast"): every bearing takes
+  // time_step_safety of the two-spring limit between its passages (one Palmgren spring per race:
+  // a passage below spall_step_min_load_fraction of the mean roller load needs no more, the
+  // stiffness going as Q^0.1) and fast_spall_time_step_safety of the three-spring limit in the
+  // ramps and loaded passages: the paper scene's simulated second in about 1.8x fewer steps, its
+  // energy balance 0.28 % against 0.074 %, the signal, cage speed and slip within the same
+  // run-to-run scatter (docs/BEARING_MODEL.md, "The lumped model").
   double fast_spall_time_step_safety = 0.35;
   double spall_step_margin_rad = 0.02;
   double spall_step_min_spin_ratio = 0.1;

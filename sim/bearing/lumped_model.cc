@@ -317,10 +317,10 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   //    pocket walls' (k_c, and their stick springs 3.3 ratio k_c on the rim).
   //  - the ring oscillators, with their damping.
   // A bearing with spalled rollers takes the smaller safety between its passages, but under the
-  // fast rule (LumpedOptions::step_rule).
+  // fast rule (the scene's [solver] lumped_step).
   for (int j = 0; j < rollers_.num_rollers(); ++j)
     if (rollers_.profile(j).spalled) spalled_.push_back(j);
-  const bool fast = options_.lumped.step_rule == LumpedStep::kFast;
+  const bool fast = scene_.solver.lumped_step == LumpedStep::kFast;
   const double safety = spalled_.empty() || fast ? options_.lumped.time_step_safety
                                                  : options_.lumped.spalled_time_step_safety;
   {
@@ -556,7 +556,7 @@ std::string LumpedBearingModel::Describe() const {
      << r.contact_stiffness() / std::pow(1e3, 10.0 / 9.0) * 1e-3 << " kN/mm^(10/9), roller mass "
      << r.roller_mass(0) * 1e3 << " g, cage " << r.cage_mass() * 1e3 << " g, inner ring "
      << r.shaft_mass() * 1e3 << " g; step " << dt_stable_ * 1e9 << " ns (" << dt_spall_ * 1e9
-     << " ns in the ramps and loaded spall passages; " << LumpedStepName(options_.lumped.step_rule)
+     << " ns in the ramps and loaded spall passages; " << LumpedStepName(scene_.solver.lumped_step)
      << " step rule)";
   os << "\nhousing fit (" << options_.lumped.fit_mesh_size_m * 1e3 << " mm FE housing, "
      << (fit_.fit_wall_s > 0 ? "computed in " : "cached");
