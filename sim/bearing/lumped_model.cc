@@ -321,8 +321,9 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
   for (int j = 0; j < rollers_.num_rollers(); ++j)
     if (rollers_.profile(j).spalled) spalled_.push_back(j);
   const bool fast = scene_.solver.lumped_step == LumpedStep::kFast;
-  const double safety = spalled_.empty() || fast ? options_.lumped.time_step_safety
-                                                 : options_.lumped.spalled_time_step_safety;
+  const bool two_springs = spalled_.empty() || fast;  // the long step's bound
+  const double safety =
+      two_springs ? options_.lumped.time_step_safety : options_.lumped.spalled_time_step_safety;
   {
     const double kn = rollers_.bound_normal_stiffness();
     const double ratio = options_.hybrid.tangential_stiffness_ratio;
@@ -337,7 +338,7 @@ LumpedBearingModel::LumpedBearingModel(const Scene& scene, const BearingModelOpt
     auto limit = [&](double springs) {
       return solver::DampedStableStep(std::sqrt(std::max(springs * kn, k_rim) / m_min), zeta);
     };
-    dt_stable_ = safety * limit(spalled_.empty() || fast ? 2.0 : 3.0);
+    dt_stable_ = safety * limit(two_springs ? 2.0 : 3.0);
     dt_spall_ = (fast ? options_.lumped.fast_spall_time_step_safety
                       : options_.lumped.spall_time_step_safety) *
                 limit(3.0);
