@@ -13,17 +13,9 @@
 #include "identify/line_dft.h"
 #include "identify/load_zone.h"
 #include "identify/smooth_envelope.h"
+#include "sim/quasistatic/harris_jones.h"
 
 namespace spallkit::identify {
-namespace {
-
-// Chord of a spall crossed in dt at spin rate f_s on a roller of diameter d.
-double ChordOf(double dt, double spin_hz, double d) {
-  const double half_angle = std::clamp(kPi * spin_hz * dt, 0.0, 0.5 * kPi);
-  return d * std::sin(half_angle);
-}
-
-}  // namespace
 
 bool IdentifyOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) {
@@ -43,11 +35,14 @@ bool IdentifyOptions::IsValid(std::string* error) const {
   if (!(width_band_min_half_width_hz > 0))
     return fail("identify: width_band_min_half_width_hz must be > 0");
   if (!(width_calibration_scale > 0)) return fail("identify: width calibration scale must be > 0");
+  if (!(min_pair_power_ratio >= 0 && max_pair_power_ratio > min_pair_power_ratio))
+    return fail("identify: need 0 <= min_pair_power_ratio < max_pair_power_ratio");
+  if (!(width_contact_load_fraction > 0 && width_contact_load_fraction <= 1))
+    return fail("identify: width_contact_load_fraction must be in (0, 1]");
   if (!(width_calibration_relative_sd >= 0 && width_calibration_relative_sd < 0.5))
     return fail("identify: width calibration scatter must be in [0, 0.5)");
   if (width_max_count < 1) return fail("identify: width_max_count must be >= 1");
   if (!(min_delay_significance >= 0)) return fail("identify: min_delay_significance must be >= 0");
-  if (!(max_entry_power_ratio > 0)) return fail("identify: max_entry_power_ratio must be > 0");
   if (!(max_width_relative_half_interval > 0))
     return fail("identify: max_width_relative_half_interval must be > 0");
   if (!(width_max_diameter_fraction > 0 && width_max_diameter_fraction <= 1))
@@ -60,7 +55,8 @@ IdentifyOptions SignalModelOptions() {
   o.count.temperature_cage = 1.0;
   o.count.temperature_sidebands = 1.0;
   o.count.min_relative_amplitude = 0.1;
-  o.width_calibration_scale = 1.0;
+  o.width_contact_release = false;
+  o.min_pair_power_ratio = 0.0;
   o.width_calibration_relative_sd = 0.0;
   o.width_max_count = 1 << 20;
   o.width_max_diameter_fraction = 0.8;
@@ -133,6 +129,11 @@ Identification Identify(const Record& record,
         bearing, *options.radial_load_n, shaft_hz, options.diametral_clearance_m, length);
     count.load_zone_half_angle_rad = zone.half_angle_rad;
     id.load_zone_from_load = true;
+    id.roller_load_n = zone.q_max_n;
+    // Inner plus outer race approach at the passages' load (Palmgren: delta = (Q / K_c)^0.9).
+    const double k_c = sim::PalmgrenContactStiffness(length);
+    id.contact_approach_m =
+        2.0 * std::pow(options.width_contact_load_fraction * zone.q_max_n / k_c, 0.9);
   }
   std::string count_reason, width_reason;
   const bool enough_turns = id.cage_revolutions >= options.min_cage_revolutions;
@@ -230,6 +231,13 @@ Identification Identify(const Record& record,
                    std::to_string(options.width_max_count) + ")";
     return finish();
   }
+  if (options.width_contact_release && !options.radial_load_n) {
+    width_reason =
+        "width: not identifiable (needs the radial load, --load-n: a loaded roller is released "
+        "and lands where the spall's gap equals its contacts' elastic approach, which the load "
+        "sets)";
+    return finish();
+  }
   if (!(wo.max_delay_s > wo.min_delay_s)) {
     width_reason = "width: not identifiable (no delay range at this speed and sample rate)";
     return finish();
@@ -250,8 +258,13 @@ Identification Identify(const Record& record,
   const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
   id.width_fit = FitEntryExit(sew, fs, zone, block, wo);
   const WidthFit& wf = id.width_fit;
+  // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
+  // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
+  const double release_angle =
+      options.width_contact_release ? 2.0 * std::sqrt(id.contact_approach_m / d) : 0.0;
   auto to_width = [&](double dt, double scale) {
-    return ChordOf((dt - options.width_calibration_offset_s) / scale, id.spin_hz, d);
+    const double t = std::max(0.0, (dt - options.width_calibration_offset_s) / scale);
+    return d * std::sin(std::min(0.5 * kPi, kPi * id.spin_hz * t + release_angle));
   };
   const double scale = options.width_calibration_scale;
   const double spread = 1.645 * options.width_calibration_relative_sd;  // 90 % of the scale
@@ -263,10 +276,15 @@ Identification Identify(const Record& record,
   } else if (wf.delay_power_significance < options.min_delay_significance) {
     why = "width: not identifiable (no entry event resolved before the impacts: significance " +
           FormatNumber("%.1f", wf.delay_power_significance) + ")";
-  } else if (wf.best.delay_power > options.max_entry_power_ratio * wf.best.zero_lag_power) {
+  } else if (const double ratio = wf.best.delay_power /
+                                  std::max(1e-300, wf.best.zero_lag_power + wf.best.noise_power);
+             ratio < options.min_pair_power_ratio || ratio > options.max_pair_power_ratio) {
     why = "width: not identifiable (the second event at " +
-          FormatNumber("%.2f", wf.best.delay_s * 1e3) +
-          " ms is as strong as the impacts themselves: another roller's impacts, not an entry)";
+          FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms correlates at " +
+          FormatNumber("%.2f", ratio) + " of the zero-lag power, outside " +
+          FormatNumber("%.2f", options.min_pair_power_ratio) + "-" +
+          FormatNumber("%.2f", options.max_pair_power_ratio) +
+          ": not a release and landing of one roller)";
   } else if (wf.delay_high_s < dt_res) {
     why = "width: below what the record resolves (< " +
           FormatNumber("%.2f", id.width_resolution_m * 1e3) + " mm)";
@@ -401,13 +419,22 @@ std::string Identification::ToJson(int indent) const {
           {"interval_90", {width_fit.delay_low_s * 1e3, width_fit.delay_high_s * 1e3}},
           {"standard_error_covariance", width_fit.delay_standard_error_s * 1e3},
           {"second_event_significance", width_fit.delay_power_significance},
+          {"power_ratio",
+           width_fit.best.delay_power /
+               std::max(1e-300, width_fit.best.zero_lag_power + width_fit.best.noise_power)},
           {"rise_ms", width_fit.best.rise_s * 1e3},
           {"decay_ms", width_fit.best.decay_s * 1e3}};
     }
     fit["width_resolution_mm"] = width_resolution_m * 1e3;
-    fit["width_calibration"] = {{"scale", options.width_calibration_scale},
+    fit["width_calibration"] = {{"contact_release", options.width_contact_release},
+                                {"load_fraction", options.width_contact_load_fraction},
+                                {"scale", options.width_calibration_scale},
                                 {"offset_ms", options.width_calibration_offset_s * 1e3},
                                 {"relative_sd", options.width_calibration_relative_sd}};
+    if (load_zone_from_load) {
+      fit["roller_load_n"] = roller_load_n;
+      fit["contact_approach_um"] = contact_approach_m * 1e6;
+    }
   }
   j["fit"] = fit;
   return j.dump(indent);

@@ -9,8 +9,9 @@
 //     -> count and positions: cage-synchronous average + f_c sideband pattern, K = 0..Z with Ceres,
 //        P(K) from the evidence (identify/count_fit.h)
 //     -> width: load-zone autocorrelation of a smooth wide-band squared envelope, entry-exit delay
-//        dt with a bootstrap interval (identify/width_fit.h), w = d sin(pi f_s (dt - offset) /
-//        scale) with the calibration below
+//        dt with a bootstrap interval (identify/width_fit.h), w = d sin(pi f_s dt + 2 sqrt(delta /
+//        d)): the roller is released and lands where the spall's gap equals the contacts' elastic
+//        approach delta (IdentifyOptions::width_contact_release)
 //     -> depth: never (the response does not depend on it; docs/IDENTIFY.md).
 // A library user does what `spall identify` does in a few lines:
 //     Record r = ReadRecord(path, {});
@@ -50,15 +51,23 @@ struct IdentifyOptions {
   WidthFitOptions width;
   // Width band: Hann window centred on the diagnosis band, +/- max(its width, this) (Hz).
   double width_band_min_half_width_hz = 2000.0;
-  // Calibration of the measured delay against the geometric one, dt = scale dt_chord + offset,
-  // with the scale's relative scatter (one standard deviation) between records, which widens the
-  // 90 % interval. Defaults: spallkit's simulator (lumped model, single spalled rollers,
-  // datasets/sweeps/identify-width.toml; docs/IDENTIFY.md, "Calibration"), where the measured
-  // event pair is the entry and the roller's landing inside the spall, not the exit. Records of
-  // the synthetic signal model (identify/synthetic_record.h) have scale 1, scatter 0.
-  double width_calibration_scale = 0.6;
+  // From the measured delay to the width. A loaded roller does not lose contact at the spall's
+  // edge: its contacts are compressed by their elastic approach delta(Q) (inner plus outer race,
+  // Palmgren's line contact at the passage's load Q), so the spall's gap under the race must first
+  // grow past delta, which takes sqrt(d delta) of rolling; it lands again sqrt(d delta) before the
+  // trailing edge. The two events (release, landing) are dt = (arc - 2 sqrt(d delta)) / v apart,
+  // v the roller's surface speed. width_contact_release takes that into account (needs the radial
+  // load); Q = width_contact_load_fraction x the load-line roller load (Harris-Jones), the
+  // fraction chosen on the calibration set (datasets/sweeps/identify-width.toml; docs/IDENTIFY.md,
+  // "Width"). Records of the synthetic signal model (identify/synthetic_record.h) place their two
+  // events at the geometric edges: no release term there.
+  bool width_contact_release = true;
+  double width_contact_load_fraction = 1.0;
+  // A remaining linear calibration, dt = scale dt_model + offset, with the relative scatter (one
+  // standard deviation) between records that widens the 90 % interval.
+  double width_calibration_scale = 1.0;
   double width_calibration_offset_s = 0.0;
-  double width_calibration_relative_sd = 0.15;
+  double width_calibration_relative_sd = 0.07;
   // The width is stated only with at most this many defective rollers: with more, the other
   // rollers' impacts pass for the second event (on the tuning set no width of a 2- or 3-roller
   // record came within 15 %).
@@ -66,9 +75,15 @@ struct IdentifyOptions {
   // Width reported when the second event's power is this many bootstrap standard deviations
   // above zero and the 90 % interval's half width is at most this fraction of the estimate.
   double min_delay_significance = 2.0;
-  // An entry (an unloading) is weaker than the impact: a "second event" whose correlation power
-  // exceeds this fraction of the zero-lag power is another roller's impact train, not an entry.
-  double max_entry_power_ratio = 0.5;
+  // The release drops the roller's whole load and the landing restores it: two events of about
+  // the same strength, A ~ B. Two events correlate at their delay with AB <= (A^2 + B^2) / 2, half
+  // the zero-lag power (noise included). A "second event" below min_pair_power_ratio of the
+  // zero-lag power (B < A / 10) is not that pair (on the simulator's narrow spalls, which are
+  // never released: a beat of two housing modes); one above max_pair_power_ratio (twice the
+  // bound: the fit splits the zero-lag peak between the events' shape and the noise's) is not an
+  // event pair at all. SignalModelOptions(): no lower bound (its entry is a weak unloading).
+  double min_pair_power_ratio = 0.1;
+  double max_pair_power_ratio = 1.0;
   double max_width_relative_half_interval = 0.3;
   // The widest spall the calibration covers, as a fraction of the element diameter: a fit beyond
   // it extrapolates the calibration (or has locked onto another event) and is not stated. Default:
@@ -82,7 +97,7 @@ struct IdentifyOptions {
 // The options calibrated for records of the synthetic signal model (identify/synthetic_record.h)
 // instead of spallkit's simulator: untempered evidence (the model is exact there), humps down to
 // 0.1 of the strongest counted (no unmodelled impacts outside the load zone), and the geometric
-// width relation (scale 1, no scatter).
+// width relation (events at the spall's edges, no scatter).
 IdentifyOptions SignalModelOptions();
 
 struct Identification {
@@ -113,6 +128,8 @@ struct Identification {
   double cage_revolutions = 0.0;
   double load_zone_half_angle_rad = 0.0;
   bool load_zone_from_load = false;
+  double roller_load_n = 0.0;       // the load-line roller load (with the radial load)
+  double contact_approach_m = 0.0;  // inner plus outer race approach at the passages' load
   double width_band_low_hz = 0.0, width_band_high_hz = 0.0;
   CageAverage cage_average;
   SpinSidebands sidebands;

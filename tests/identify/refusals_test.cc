@@ -2,6 +2,8 @@
 // record's resolution, too few cage revolutions, and bad input.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/error.h"
 #include "tests/dsp/diagnose_test_signals.h"
 #include "tests/identify/identify_test_records.h"
@@ -76,6 +78,35 @@ TEST(Refusals, WidthBeyondTheCalibrationIsNotStated) {
   o.width_max_diameter_fraction = 1.5;
   std::string e;
   EXPECT_FALSE(o.IsValid(&e));
+}
+
+// The simulator's width relation (IdentifyOptions::width_contact_release): the roller is released
+// sqrt(d delta) past the leading edge and lands sqrt(d delta) before the trailing one, so the same
+// measured delay reads w = d sin(asin(w_edges / d) + 2 sqrt(delta / d)), delta the contacts'
+// approach at the load-line roller load. Without the radial load the width is refused.
+TEST(Refusals, ContactReleaseShiftsTheWidthAndNeedsTheLoad) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(900, 15, {{0, 2.0, 30}}, 3));
+  IdentifyOptions o = SignalModelOptions();
+  const Identification edges = IdentifyRecord(r, 900, 10000, o);
+  ASSERT_TRUE(edges.width_identifiable) << edges.BriefReport();
+  o.width_contact_release = true;
+  const Identification released = IdentifyRecord(r, 900, 10000, o);
+  ASSERT_TRUE(released.width_identifiable) << released.BriefReport();
+  const double d = 6.5e-3;
+  EXPECT_GT(released.contact_approach_m, 10e-6);  // 2 x Palmgren at ~3.6 kN: about 21 um
+  EXPECT_LT(released.contact_approach_m, 30e-6);
+  EXPECT_NEAR(
+      released.width_m,
+      d * std::sin(std::asin(edges.width_m / d) + 2.0 * std::sqrt(released.contact_approach_m / d)),
+      1e-9);
+  const BearingGeometry g = CatalogBearing("N205EM");
+  const Identification no_load = Identify(r, g, 15.0, dsp::Diagnose(r, g, 15.0), o);
+  ASSERT_TRUE(no_load.count_identifiable) << no_load.BriefReport();
+  EXPECT_FALSE(no_load.width_identifiable);
+  bool said = false;
+  for (const std::string& reason : no_load.reasons)
+    said = said || reason.find("needs the radial load") != std::string::npos;
+  EXPECT_TRUE(said) << no_load.BriefReport();
 }
 
 // The diagnosis itself needs 4 cage revolutions; a stricter requirement refuses the count.
