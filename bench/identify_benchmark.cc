@@ -106,7 +106,12 @@ void BM_SyntheticCheck(benchmark::State& state) {
         roller.spin_phase_rad = 6.283185307179586 * u(rng);
         s.rollers.push_back(roller);
       }
-      const Record rec = identify::MakeSyntheticRecord(s);
+      Record rec = identify::MakeSyntheticRecord(s);
+      if (k == 0) {  // no roller, no signal to set a noise level against: unit white noise
+        std::mt19937_64 noise_rng(s.seed);  // its own stream: the other records stay the same
+        std::normal_distribution<double> noise(0.0, 1.0);
+        for (double& x : rec.samples) x = noise(noise_rng);
+      }
       const BearingGeometry g = CatalogBearing("N205EM");
       const dsp::Diagnosis d = dsp::Diagnose(rec, g, s.shaft_hz);
       identify::IdentifyOptions o = identify::SignalModelOptions();
