@@ -69,8 +69,9 @@ struct IdentifyOptions {
   double width_calibration_offset_s = 0.0;
   double width_calibration_relative_sd = 0.07;
   // The width is stated only with at most this many defective rollers: with more, the other
-  // rollers' impacts pass for the second event (on the tuning set no width of a 2- or 3-roller
-  // record came within 15 %).
+  // rollers' impacts pass for the second event (datasets/sweeps/identify-width-multi.toml: with
+  // 2 allowed, 6 of 9 two-roller widths within 15 %, against 17 of 19 one-roller widths on the
+  // calibration set; no three-roller width stated).
   int width_max_count = 1;
   // Width reported when the second event's power is this many bootstrap standard deviations
   // above zero and the 90 % interval's half width is at most this fraction of the estimate.
