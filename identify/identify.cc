@@ -276,8 +276,7 @@ Identification Identify(const Record& record,
   } else if (wf.delay_power_significance < options.min_delay_significance) {
     why = "width: not identifiable (no entry event resolved before the impacts: significance " +
           FormatNumber("%.1f", wf.delay_power_significance) + ")";
-  } else if (const double ratio = wf.best.delay_power /
-                                  std::max(1e-300, wf.best.zero_lag_power + wf.best.noise_power);
+  } else if (const double ratio = wf.best.PairPowerRatio();
              ratio < options.min_pair_power_ratio || ratio > options.max_pair_power_ratio) {
     why = "width: not identifiable (the second event at " +
           FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms correlates at " +
@@ -419,9 +418,7 @@ std::string Identification::ToJson(int indent) const {
           {"interval_90", {width_fit.delay_low_s * 1e3, width_fit.delay_high_s * 1e3}},
           {"standard_error_covariance", width_fit.delay_standard_error_s * 1e3},
           {"second_event_significance", width_fit.delay_power_significance},
-          {"power_ratio",
-           width_fit.best.delay_power /
-               std::max(1e-300, width_fit.best.zero_lag_power + width_fit.best.noise_power)},
+          {"power_ratio", width_fit.best.PairPowerRatio()},
           {"rise_ms", width_fit.best.rise_s * 1e3},
           {"decay_ms", width_fit.best.decay_s * 1e3}};
     }

@@ -30,6 +30,7 @@
 // (independent lags) is reported beside it.
 #pragma once
 
+#include <algorithm>
 #include <span>
 #include <string>
 #include <vector>
@@ -85,6 +86,12 @@ struct EntryExitFit {
   double decay_s = 0.0;              // tau_d
   double chi2 = 0.0;
   std::vector<double> model;
+
+  // The second event's correlation over the zero-lag power (noise included): at most 1/2 for two
+  // events, about 1/2 for two of like strength.
+  double PairPowerRatio() const {
+    return delay_power / std::max(1e-300, zero_lag_power + noise_power);
+  }
 };
 
 struct WidthFit {
