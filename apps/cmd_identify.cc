@@ -74,7 +74,9 @@ spallkit::apps::Register reg(
       auto o = std::make_shared<Opts>();
       o->input.Add(sub);
       o->load_option = sub.add_option(
-          "--load-n", o->load_n, "radial load, N (fixes the load zone; else it is fitted)");
+          "--load-n",
+          o->load_n,
+          "radial load, N (fixes the load zone, else it is fitted; the width needs it)");
       sub.add_option("--max-count",
                      o->max_count,
                      "largest number of defective rollers tried (default: every roller)");
