@@ -267,7 +267,7 @@ Identification Identify(const Record& record,
     return d * std::sin(std::min(0.5 * kPi, kPi * id.spin_hz * t + release_angle));
   };
   const double scale = options.width_calibration_scale;
-  const double spread = 1.645 * options.width_calibration_relative_sd;  // 90 % of the scale
+  const double spread = 1.645 * options.width_calibration_relative_sd;  // 90 % of the relation's
   const double dt_res = std::max(2.0 / fs, 2.0 * wf.best.rise_s);
   id.width_resolution_m = to_width(dt_res, scale);
   std::string& why = width_reason;
@@ -294,8 +294,8 @@ Identification Identify(const Record& record,
         FormatNumber("%.2f", id.width_resolution_m * 1e3) + " mm)";
   } else {
     id.width_m = to_width(wf.best.delay_s, scale);
-    id.width_low_m = to_width(wf.delay_low_s, scale * (1.0 + spread));
-    id.width_high_m = to_width(wf.delay_high_s, scale * (1.0 - spread));
+    id.width_low_m = to_width(wf.delay_low_s, scale) * (1.0 - spread);
+    id.width_high_m = to_width(wf.delay_high_s, scale) * (1.0 + spread);
     const double half = 0.5 * (id.width_high_m - id.width_low_m);
     const double widest = options.width_max_diameter_fraction * d;
     if (id.width_m > widest) {
