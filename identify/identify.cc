@@ -130,10 +130,10 @@ Identification Identify(const Record& record,
     count.load_zone_half_angle_rad = zone.half_angle_rad;
     id.load_zone_from_load = true;
     id.roller_load_n = zone.q_max_n;
-    // Inner plus outer race approach at the passages' load (Palmgren: delta = (Q / K_c)^0.9).
+    // Inner plus outer race approach at the passages' load.
     const double k_c = sim::PalmgrenContactStiffness(length);
     id.contact_approach_m =
-        2.0 * std::pow(options.width_contact_load_fraction * zone.q_max_n / k_c, 0.9);
+        2.0 * sim::PalmgrenApproach(options.width_contact_load_fraction * zone.q_max_n, k_c);
   }
   std::string count_reason, width_reason;
   const bool enough_turns = id.cage_revolutions >= options.min_cage_revolutions;

@@ -174,7 +174,7 @@ RollerContacts::RollerContacts(const Scene& scene,
   //  - ring side: omega^2 = k (3/m_r + 1/m_ring) for one contact on the ring's kernel nodes.
   {
     const double q = 2.0 * std::max(load, 1000.0);
-    const double delta = std::pow(q / k_c_, 0.9);
+    const double delta = PalmgrenApproach(q, k_c_);
     const double kn = 10.0 / 9.0 * q / delta;
     double m_min = roller_mass_[0];
     for (double m : roller_mass_) m_min = std::min(m_min, m);

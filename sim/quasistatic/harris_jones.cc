@@ -30,15 +30,15 @@ struct RollerSolution {
 
 RollerSolution SolveRoller(double s, double k, double fc) {
   RollerSolution r;
-  const double s_free = std::pow(fc / k, 0.9);  // approach taken by the outer contact alone
-  if (!(s > s_free)) return r;                  // roller off the inner race
+  const double s_free = PalmgrenApproach(fc, k);  // approach taken by the outer contact alone
+  if (!(s > s_free)) return r;                    // roller off the inner race
   const double q_half = k * std::pow(0.5 * s, 10.0 / 9.0);  // both contacts at s/2
   if (fc == 0.0) {
     r.q_inner = q_half;
     r.dq_ds = (10.0 / 9.0) * q_half / s;
     return r;
   }
-  auto g = [&](double q) { return std::pow(q / k, 0.9) + std::pow((q + fc) / k, 0.9) - s; };
+  auto g = [&](double q) { return PalmgrenApproach(q, k) + PalmgrenApproach(q + fc, k) - s; };
   auto dg = [&](double q) {
     return 0.9 / k * (std::pow(q / k, -0.1) + std::pow((q + fc) / k, -0.1));
   };
@@ -252,8 +252,8 @@ void SolveLoadDistribution(const LoadDistributionOptions& options,
     const RollerSolution rs = SolveRoller(rl.approach_m, k, fc);
     rl.inner_load_n = rs.q_inner;
     rl.outer_load_n = rs.q_inner + fc;
-    rl.inner_deflection_m = std::pow(rl.inner_load_n / k, 0.9);
-    rl.outer_deflection_m = std::pow(rl.outer_load_n / k, 0.9);
+    rl.inner_deflection_m = PalmgrenApproach(rl.inner_load_n, k);
+    rl.outer_deflection_m = PalmgrenApproach(rl.outer_load_n, k);
     s.q_max_n = std::max(s.q_max_n, rl.outer_load_n);
     s.q_max_inner_n = std::max(s.q_max_inner_n, rl.inner_load_n);
     s.lateral_force_n += rl.inner_load_n * std::sin(psi[j]);

@@ -27,6 +27,7 @@
 // converted once inside.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -115,5 +116,11 @@ constexpr double kStaticCapacityStressPa = 4.0e9;
 
 // K_c in SI (N/m^(10/9)) for a roller of effective length l.
 double PalmgrenContactStiffness(double roller_length_m, double coefficient = 8.06e4);
+
+// Palmgren's law inverted: the approach (m) of one line contact of stiffness K_c (N/m^(10/9))
+// under load Q (N), delta = (Q / K_c)^0.9.
+inline double PalmgrenApproach(double load_n, double contact_stiffness) {
+  return std::pow(load_n / contact_stiffness, 0.9);
+}
 
 }  // namespace spallkit::sim
