@@ -415,13 +415,12 @@ JointExplanation ExplainJointly(const NormalizedSpectrum& spectrum,
     const bool on_integer =
         std::abs(out.roller_integer_ratio_mismatch) <= explanation.integer_ratio_tolerance &&
         std::abs(ratio - n) < std::abs(ratio - kinematic_ratio);
-    // Unresolved, the ratio may sit on the integer by its measurement error alone, and a roller
-    // spall's load-zone lines may outweigh its f_b harmonics: the detected roller comb is taken
-    // for a dense cage comb only when both say so.
-    out.roller_is_cage_comb = out.roller_cage.separable ? on_integer
-                                                        : on_integer && cage_det &&
-                                                              cage_det->harmonic_evidence >
-                                                                  detections[i].harmonic_evidence;
+    // The ratio may sit on the integer by its measurement error (unresolved records) or by the
+    // cage slipping more than the rollers, and a roller spall's load-zone lines may outweigh its
+    // f_b harmonics: the detected roller comb is taken for a dense cage comb only when both say
+    // so (see the header).
+    out.roller_is_cage_comb =
+        on_integer && cage_det && cage_det->harmonic_evidence > detections[i].harmonic_evidence;
   }
 
   // Outer against inner race on the harmonics only one of them predicts.
