@@ -41,9 +41,19 @@ NormalizedSpectrum NormalizeSpectrum(std::span<const double> power,
 bool FamilyDetection::family_evidence() const {
   if (significant_harmonics >= 2 && (!sidebands_expected || significant_sidebands >= min_sidebands))
     return true;
-  // One harmonic with both of its sidebands.
+  // A roller spall's two interleaved series, f_b and the spin series (k - 1/2) f_b (its outer- and
+  // inner-race impacts differ), with three lines significant: no race or shaft comb has lines
+  // at both, and the f_c sidebands that a single spall's load-zone passage puts around them
+  // cancel in part for several defective rollers (their passages are spread over the cage turn).
+  int integer_orders = 0, half_orders = 0;
   for (const auto& h : lines) {
     if (h.line.is_sideband() || !h.significant) continue;
+    ++(h.line.half_order ? half_orders : integer_orders);
+  }
+  if (integer_orders >= 1 && half_orders >= 1 && integer_orders + half_orders >= 3) return true;
+  // One harmonic with both of its sidebands.
+  for (const auto& h : lines) {
+    if (h.line.is_sideband() || h.line.half_order || !h.significant) continue;
     int sb = 0;
     for (const auto& s : lines)
       if (s.line.is_sideband() && s.line.harmonic == h.line.harmonic && s.significant) ++sb;
@@ -162,6 +172,10 @@ CombSearch::CombSearch(const FaultFamily& family,
         continue;
       for (int g = 0; g < grid; ++g) excluded[g] |= std::abs(f[g] - e.freq_hz) <= e.half_width_hz;
     }
+    // The spin series is tested line by line for the family rule, not scored in the comb: a
+    // roller spall whose two races' impacts are alike has none, and its weak lines would only
+    // dilute the comb's score.
+    if (family.lines[l].half_order) std::fill(excluded.begin(), excluded.end(), 1);
     int* bin = bins_.data() + static_cast<size_t>(l) * grid;
     for (int g = 0; g < grid; ++g) bin[g] = excluded[g] ? -1 : static_cast<int>(std::floor(q[g]));
     for (int g = 0; g < grid; ++g) used_[g] += bin[g] >= 0;
@@ -377,9 +391,12 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
       ++det.significant_sidebands;
     } else {
       ++det.significant_harmonics;
-      // Least squares f_k = k f0 with equal errors: f0 = sum k f_k / sum k^2.
-      num += ev.line.harmonic * ev.freq_hz;
-      den += double(ev.line.harmonic) * ev.line.harmonic;
+      // Least squares f_k = k f0 with equal errors: f0 = sum k f_k / sum k^2, on the
+      // fundamental's own harmonics (the spin series only joins the family rule).
+      if (!ev.line.half_order) {
+        num += ev.line.harmonic * ev.freq_hz;
+        den += double(ev.line.harmonic) * ev.line.harmonic;
+      }
     }
   };
   // A line's peak in the table: the strongest of the 4 bins around its position (the pair the
@@ -398,6 +415,7 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
   };
   double harmonic_sum = 0.0;
   int harmonic_count = 0;
+  det.lines.reserve(nl);
   for (int l = 0; l < nl; ++l) {
     LineEvidence ev;
     ev.line = family.lines[l];
@@ -442,7 +460,9 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
     ev.significant = ev.p_value <= options.line_p_value &&
                      (spectrum.envelope_mean <= 0.0 || ev.modulation >= options.min_modulation);
     ev.freq_hz = InterpolatePeakHz(spectrum.power, i, df);
-    if (!ev.line.is_sideband()) {
+    // The carrier strength is the fundamental's own harmonics: a dense cage comb also feeds a
+    // roller's spin series (BSF = 6.92 f_c on an N205EM, 5.92 f_c on a 6205).
+    if (!ev.line.is_sideband() && !ev.line.half_order) {
       harmonic_sum += -std::log(std::max(ev.p_value, 1e-300));
       ++harmonic_count;
     }

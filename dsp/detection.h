@@ -137,7 +137,8 @@ struct FamilyDetection {
   int combinations = 0;         // C
   int significant_harmonics = 0;
   int significant_sidebands = 0;
-  // Carrier strength: mean over the non-excluded harmonic lines (not sidebands) of the uncapped
+  // Carrier strength: mean over the non-excluded harmonic lines (not sidebands, not the spin
+  // series' half orders) of the uncapped
   // -ln p. Ranks detected families: the lattice of shaft/cage combination lines lets a strong
   // fault feed other combs through sidebands and coincident harmonics (for a 6205, 3 BPFO ~
   // 2 BPFI), but the true family's own harmonics are the strongest lines.

@@ -838,6 +838,7 @@ std::string Diagnosis::ToJson(int indent) const {
       ordered_json lj;
       lj["label"] = l.line.label;
       lj["harmonic"] = l.line.harmonic;
+      lj["order"] = l.line.order();  // of the fundamental: k, or k - 1/2 for the spin series
       lj["sideband"] = l.line.sideband;
       lj["nominal_hz"] = l.line.nominal_hz;
       lj["frequency_hz"] = l.freq_hz;

@@ -88,6 +88,7 @@ std::pair<const LineEvidence*, const LineEvidence*> SignificantSidebands(const F
                                                                          const LineEvidence& h) {
   const LineEvidence *lo = nullptr, *hi = nullptr;
   for (const auto& sb : det.lines) {
+    if (h.line.half_order) break;  // the spin series carries no sidebands of its own here
     if (!sb.line.is_sideband() || sb.line.harmonic != h.line.harmonic || !sb.significant) continue;
     (sb.line.sideband < 0 ? lo : hi) = &sb;
   }

@@ -55,8 +55,12 @@ bool FaultBandOptions::IsValid(std::string* error) const {
 
 namespace {
 
-FaultFamily MakeFamily(
-    FaultComponent c, double f0, double fsb, int harmonics, const char* sb_name) {
+FaultFamily MakeFamily(FaultComponent c,
+                       double f0,
+                       double fsb,
+                       int harmonics,
+                       const char* sb_name,
+                       bool half_orders = false) {
   FaultFamily fam;
   fam.component = c;
   fam.fundamental_hz = f0;
@@ -68,6 +72,16 @@ FaultFamily MakeFamily(
     l.nominal_hz = k * f0;
     l.label = std::to_string(k) + "x" + sym;
     fam.lines.push_back(l);
+  }
+  if (half_orders) {
+    for (int k = 1; k <= harmonics; ++k) {
+      FaultLine l;
+      l.harmonic = k;
+      l.half_order = true;
+      l.nominal_hz = l.order() * f0;
+      l.label = std::to_string(k - 1) + ".5x" + sym;
+      fam.lines.push_back(l);
+    }
   }
   if (fsb > 0.0) {
     for (int k = 1; k <= harmonics; ++k) {
@@ -99,8 +113,12 @@ std::vector<FaultFamily> MakeFaultFamilies(const BearingFrequencies& f,
                            "f_c"));
   out.push_back(MakeFamily(
       FaultComponent::kInnerRace, f.bpfi_hz, options.sidebands ? f.shaft_hz : 0.0, n, "f_r"));
-  out.push_back(MakeFamily(
-      FaultComponent::kRollingElement, f.f_b_hz, options.sidebands ? f.cage_hz : 0.0, n, "f_c"));
+  out.push_back(MakeFamily(FaultComponent::kRollingElement,
+                           f.f_b_hz,
+                           options.sidebands ? f.cage_hz : 0.0,
+                           n,
+                           "f_c",
+                           options.rolling_element_spin_series));
   out.push_back(MakeFamily(FaultComponent::kCage, f.cage_hz, 0.0, n, "f_c"));
   return out;
 }

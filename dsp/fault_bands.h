@@ -42,20 +42,23 @@ const char* ComponentName(FaultComponent component);
 // Symbol of the family's fundamental: "BPFO", "BPFI", "f_b", "f_c".
 const char* ComponentSymbol(FaultComponent component);
 
-// One expected line: harmonic k of the fundamental plus `sideband` times the sideband spacing.
+// One expected line: harmonic k of the fundamental plus `sideband` times the sideband spacing,
+// or, for the rolling element's spin series, the half order (k - 1/2) f0.
 struct FaultLine {
   int harmonic = 1;         // k >= 1
   int sideband = 0;         // -1, 0 or +1
-  double nominal_hz = 0.0;  // kinematic position k f0 + sideband f_sb
-  std::string label;        // "2xBPFI", "2xBPFI-f_r", "1xf_b+f_c"
+  bool half_order = false;  // at (k - 1/2) f0: 1, 3, 5 x BSF of a roller spall (f0 = f_b = 2 BSF)
+  double nominal_hz = 0.0;  // kinematic position order() f0 + sideband f_sb
+  std::string label;        // "2xBPFI", "2xBPFI-f_r", "1xf_b+f_c", "0.5xf_b"
   bool is_sideband() const { return sideband != 0; }
+  double order() const { return half_order ? harmonic - 0.5 : harmonic; }
 };
 
 struct FaultFamily {
   FaultComponent component = FaultComponent::kOuterRace;
   double fundamental_hz = 0.0;   // f0: BPFO, BPFI, f_b or f_c (kinematic)
   double sideband_hz = 0.0;      // f_r (inner race), f_c (rolling element, optional outer), 0 none
-  std::vector<FaultLine> lines;  // harmonics 1..N first, then sidebands, ordered by harmonic
+  std::vector<FaultLine> lines;  // harmonics 1..N first (then the half orders), then sidebands
 
   // Highest line frequency (Hz, kinematic).
   double MaxLineHz() const;
@@ -65,6 +68,11 @@ struct FaultBandOptions {
   int harmonics = 5;                  // N: harmonics 1..N of each fundamental
   bool sidebands = true;              // inner race +/- f_r, rolling element +/- f_c
   bool outer_race_sidebands = false;  // BPFO +/- f_c (listing only; not expected for a fixed fault)
+  // Rolling element: also the spin series (k - 1/2) f_b, k = 1..N (1, 3, 5 x BSF). A roller
+  // spall strikes the outer and the inner race in turn, once each per roller revolution; the two
+  // impacts differ (curvature, load, path to the sensor), so the record is periodic at BSF, not
+  // only at f_b = 2 BSF.
+  bool rolling_element_spin_series = true;
   double tolerance = 0.02;  // relative half-width of each search window (slip, speed error)
 
   bool IsValid(std::string* error) const;

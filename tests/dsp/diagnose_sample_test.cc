@@ -181,6 +181,53 @@ INSTANTIATE_TEST_SUITE_P(Bearings,
                                            Case{"N205EM", 1800, Kind::kCage, 1.0},
                                            Case{"6205", 1797, Kind::kCage, 1.0}));
 
+// The rolling-element family's spin series (docs/DIAGNOSIS.md, "Detection statistic"): a roller
+// spall whose outer- and inner-race impacts differ (every other impulse at 0.4 of the others)
+// repeats at BSF = f_b / 2, and the lines (k - 1/2) f_b join the family rule. Without load-zone
+// modulation there are no f_c sidebands, so only the spin-series rule (three lines, of both
+// series) can call it; with the impacts alike (no spin series) the same record is not a roller
+// spall, as before the rule. N205EM, 1200 rpm, 2 s, 1 % slip, shaft and mains lines.
+TEST(SpinSeries, RollerSpallWithoutSidebandsIsCalledByItsTwoSeries) {
+  const BearingFrequencies f = ComputeFrequencies(CatalogBearing("N205EM"), 1200 / 60.0);
+  for (unsigned seed : {1u, 2u}) {
+    for (double ratio : {0.4, 1.0}) {
+      FaultSignalSpec s;
+      s.fs_hz = 20000;
+      s.duration_s = 2.0;
+      s.shaft_hz = f.shaft_hz;
+      s.shaft_amplitude = 0.5;
+      s.mains_amplitude = 0.2;
+      s.noise_rms = 0.4;
+      s.amplitude = 3.0;
+      s.resonance_hz = 5400;
+      s.seed = seed;
+      s.rate_hz = f.f_b_hz * 0.99;
+      s.alternate_ratio = ratio;
+      Record r;
+      r.samples = MakeFaultSignal(s);
+      r.sample_rate_hz = s.fs_hz;
+      const Diagnosis d = Diagnose(r, CatalogBearing("N205EM"), 1200 / 60.0);
+      SCOPED_TRACE("seed " + std::to_string(seed) + ", ratio " + std::to_string(ratio) + "\n" +
+                   d.BriefReport());
+      const FamilyDetection& roller = Find(d, FaultComponent::kRollingElement);
+      int half_orders = 0;
+      for (const auto& l : roller.lines) half_orders += l.line.half_order && l.significant;
+      // No load-zone modulation: fewer significant sidebands than the sideband rule needs (a
+      // chance line may pass the line test).
+      EXPECT_LT(roller.significant_sidebands, roller.min_sidebands);
+      if (ratio < 1.0) {
+        EXPECT_EQ(d.verdict, Verdict::kRollingElement);
+        EXPECT_GE(half_orders, 1);
+        ASSERT_TRUE(d.measured_f_b_hz.has_value());
+        EXPECT_NEAR(*d.measured_f_b_hz / s.rate_hz, 1.0, 3e-3);
+      } else {
+        EXPECT_EQ(half_orders, 0);
+        EXPECT_NE(d.verdict, Verdict::kRollingElement);
+      }
+    }
+  }
+}
+
 // The wider sweep of docs/DIAGNOSIS.md ("Joint explanation"): 2 s records, 1 % slip on every
 // rate, 4 seeds, roller / cage / outer-race signals on the N205EM at 600-2400 rpm, the 6205 at
 // 900-2400 and the 6203 at 1200-2400. Right: the roller spall rolling_element, the outer race

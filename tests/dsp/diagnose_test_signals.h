@@ -23,6 +23,9 @@ struct FaultSignalSpec {
   double modulation_hz = 0.0;     // amplitude modulation of the impulses
   double modulation_depth = 0.0;  // 0..1: a = 1 - depth + depth * (1 + cos)/2
   double jitter = 0.003;          // std of each interval, relative (random slip)
+  // Every other impulse's amplitude relative to the others: a roller spall strikes the outer and
+  // the inner race in turn, and the two impacts differ (1: alike, no 1 x BSF series).
+  double alternate_ratio = 1.0;
   double noise_rms = 0.3;
   double shaft_hz = 0.0;  // distractor shaft harmonics 1..3 (amplitude shaft_amplitude/k)
   double shaft_amplitude = 0.0;
@@ -50,10 +53,12 @@ inline std::vector<double> MakeFaultSignal(const FaultSignalSpec& s) {
     }
     std::uniform_real_distribution<double> phase(0.0, 1.0);
     double t = phase(rng) / s.rate_hz;
+    bool other = false;
     while (t < s.duration_s) {
-      const double a =
-          s.amplitude * (1.0 - s.modulation_depth +
-                         s.modulation_depth * 0.5 * (1.0 + std::cos(two_pi * s.modulation_hz * t)));
+      const double a = (other ? s.alternate_ratio : 1.0) * s.amplitude *
+                       (1.0 - s.modulation_depth +
+                        s.modulation_depth * 0.5 * (1.0 + std::cos(two_pi * s.modulation_hz * t)));
+      other = !other;
       const int i0 = static_cast<int>(std::lround(t * s.fs_hz));
       for (int i = 0; i < len && i0 + i < n; ++i) x[i0 + i] += a * kernel[i];
       t += (1.0 + s.jitter * gauss(rng)) / s.rate_hz;

@@ -16,8 +16,16 @@ TEST(FaultBands, FamiliesFollowKinematicsAndConventions) {
   ASSERT_EQ(fams.size(), 4u);
   EXPECT_EQ(fams[0].lines.size(), 3u);                // outer: harmonics only
   EXPECT_EQ(fams[1].lines.size(), 9u);                // inner: +/- f_r
-  EXPECT_EQ(fams[2].lines.size(), 9u);                // rolling element: +/- f_c
+  EXPECT_EQ(fams[2].lines.size(), 12u);               // rolling element: the spin series, +/- f_c
   EXPECT_NEAR(fams[2].fundamental_hz, 115.08, 0.01);  // f_b = 2 x BSF (paper)
+  // The spin series (k - 1/2) f_b = 1, 3, 5 x BSF after the harmonics, without sidebands.
+  EXPECT_TRUE(fams[2].lines[3].half_order);
+  EXPECT_EQ(fams[2].lines[3].label, "0.5xf_b");
+  EXPECT_NEAR(fams[2].lines[4].nominal_hz, 3.0 * f.roller_spin_hz, 1e-9);
+  EXPECT_DOUBLE_EQ(fams[2].lines[5].order(), 2.5);
+  EXPECT_EQ(
+      MakeFaultFamilies(f, {.harmonics = 3, .rolling_element_spin_series = false})[2].lines.size(),
+      9u);
   EXPECT_NEAR(fams[1].lines[5].nominal_hz, 2 * f.bpfi_hz - f.shaft_hz, 1e-9);
   EXPECT_EQ(fams[1].lines[5].label, "2xBPFI-f_r");
   EXPECT_STREQ(ComponentName(fams[3].component), "cage");
