@@ -138,10 +138,10 @@ struct FamilyDetection {
   int significant_harmonics = 0;
   int significant_sidebands = 0;
   // Carrier strength: mean over the non-excluded harmonic lines (not sidebands, not the spin
-  // series' half orders) of the uncapped
-  // -ln p. Ranks detected families: the lattice of shaft/cage combination lines lets a strong
-  // fault feed other combs through sidebands and coincident harmonics (for a 6205, 3 BPFO ~
-  // 2 BPFI), but the true family's own harmonics are the strongest lines.
+  // series' half orders) of the uncapped -ln p. Ranks detected families: the lattice of
+  // shaft/cage combination lines lets a strong fault feed other combs through sidebands and
+  // coincident harmonics (for a 6205, 3 BPFO ~ 2 BPFI), but the true family's own harmonics are
+  // the strongest lines.
   double harmonic_evidence = 0.0;
   std::vector<LineEvidence> lines;
   std::string reason;  // why detected / not detected, one line

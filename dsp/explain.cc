@@ -87,8 +87,8 @@ double RollerForestFloorHz(double f_b_hz, double f_c_hz, int sideband_orders) {
 std::pair<const LineEvidence*, const LineEvidence*> SignificantSidebands(const FamilyDetection& det,
                                                                          const LineEvidence& h) {
   const LineEvidence *lo = nullptr, *hi = nullptr;
+  if (h.line.half_order) return {lo, hi};  // the spin series carries no sidebands of its own here
   for (const auto& sb : det.lines) {
-    if (h.line.half_order) break;  // the spin series carries no sidebands of its own here
     if (!sb.line.is_sideband() || sb.line.harmonic != h.line.harmonic || !sb.significant) continue;
     (sb.line.sideband < 0 ? lo : hi) = &sb;
   }
