@@ -54,8 +54,23 @@ TEST(SampleRecord, RollerSpallIsRollingElementWithMeasuredRates) {
 
 enum class Kind { kRoller, kCage, kOuter };
 
-// 2 s (or `duration_s`) at 20 kHz, a 5.4 kHz resonance, shaft and mains distractors; 1 % slip
-// on every rate.
+// 20 kHz, a 5.4 kHz resonance, shaft and mains distractors; no impulses yet.
+FaultSignalSpec BaseSpec(double shaft_hz, unsigned seed, double duration_s) {
+  FaultSignalSpec s;
+  s.fs_hz = 20000;
+  s.duration_s = duration_s;
+  s.shaft_hz = shaft_hz;
+  s.shaft_amplitude = 0.5;
+  s.mains_amplitude = 0.2;
+  s.noise_rms = 0.4;
+  s.amplitude = 3.0;
+  s.resonance_hz = 5400;
+  s.seed = seed;
+  return s;
+}
+
+// 2 s (or `duration_s`) of BaseSpec with a roller, cage or outer-race impulse train; 1 % slip on
+// every rate.
 Record Synthetic(const char* bearing,
                  double rpm,
                  Kind kind,
@@ -64,16 +79,7 @@ Record Synthetic(const char* bearing,
                  double* cage_hz,
                  double duration_s = 2.0) {
   const BearingFrequencies f = ComputeFrequencies(CatalogBearing(bearing), rpm / 60.0);
-  FaultSignalSpec s;
-  s.fs_hz = 20000;
-  s.duration_s = duration_s;
-  s.shaft_hz = f.shaft_hz;
-  s.shaft_amplitude = 0.5;
-  s.mains_amplitude = 0.2;
-  s.noise_rms = 0.4;
-  s.amplitude = 3.0;
-  s.resonance_hz = 5400;
-  s.seed = seed;
+  FaultSignalSpec s = BaseSpec(f.shaft_hz, seed, duration_s);
   switch (kind) {
     case Kind::kRoller:
       s.rate_hz = f.f_b_hz * 0.99;
@@ -191,16 +197,7 @@ TEST(SpinSeries, RollerSpallWithoutSidebandsIsCalledByItsTwoSeries) {
   const BearingFrequencies f = ComputeFrequencies(CatalogBearing("N205EM"), 1200 / 60.0);
   for (unsigned seed : {1u, 2u}) {
     for (double ratio : {0.4, 1.0}) {
-      FaultSignalSpec s;
-      s.fs_hz = 20000;
-      s.duration_s = 2.0;
-      s.shaft_hz = f.shaft_hz;
-      s.shaft_amplitude = 0.5;
-      s.mains_amplitude = 0.2;
-      s.noise_rms = 0.4;
-      s.amplitude = 3.0;
-      s.resonance_hz = 5400;
-      s.seed = seed;
+      FaultSignalSpec s = BaseSpec(f.shaft_hz, seed, 2.0);
       s.rate_hz = f.f_b_hz * 0.99;
       s.alternate_ratio = ratio;
       Record r;
