@@ -145,6 +145,10 @@ CombSearch::CombSearch(const FaultFamily& family,
   bins_.assign(static_cast<size_t>(nl) * grid, -1);
   changed[0] = 1;
   for (int l = 0; l < nl; ++l) {
+    // The spin series is tested line by line for the family rule, not scored in the comb: a
+    // roller spall whose two races' impacts are alike has none, and its weak lines would only
+    // dilute the comb's score. Its bins stay -1 (excluded everywhere).
+    if (family.lines[l].half_order) continue;
     const double fl = family.lines[l].nominal_hz;
     for (int g = 0; g < grid; ++g) {
       f[g] = fl * s_grid_[g];
@@ -172,10 +176,6 @@ CombSearch::CombSearch(const FaultFamily& family,
         continue;
       for (int g = 0; g < grid; ++g) excluded[g] |= std::abs(f[g] - e.freq_hz) <= e.half_width_hz;
     }
-    // The spin series is tested line by line for the family rule, not scored in the comb: a
-    // roller spall whose two races' impacts are alike has none, and its weak lines would only
-    // dilute the comb's score.
-    if (family.lines[l].half_order) std::fill(excluded.begin(), excluded.end(), 1);
     int* bin = bins_.data() + static_cast<size_t>(l) * grid;
     for (int g = 0; g < grid; ++g) bin[g] = excluded[g] ? -1 : static_cast<int>(std::floor(q[g]));
     for (int g = 0; g < grid; ++g) used_[g] += bin[g] >= 0;
@@ -301,6 +301,7 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
   std::vector<double> score(grid, 0.0);
   const double* ps = pair_scores.data();
   for (int l = 0; l < nl; ++l) {
+    if (family_.lines[l].half_order) continue;  // not scored (see the plan)
     const int* bin = bins_.data() + static_cast<size_t>(l) * grid;
     for (int g = 0; g < grid; ++g)
       if (bin[g] >= 0) score[g] += ps[bin[g]];
