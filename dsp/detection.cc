@@ -197,6 +197,7 @@ CombSearch::CombSearch(const FaultFamily& family,
       if (bin + 1.0 >= top_bin) break;
       bool in_window = false;
       for (const FaultLine& line : family.lines) {
+        if (line.half_order) continue;  // the spin series is not scored: not a comb window
         const double g = std::max(guard_hz, guard_fraction * fm);
         in_window |= fm >= line.nominal_hz * s_lo - g && fm <= line.nominal_hz * s_hi + g;
       }

@@ -102,6 +102,39 @@ TEST(DetectionNuisance, WithoutReferenceLinesTheCoincidentLineStaysOut) {
   EXPECT_FALSE(d.detected) << d.reason;
 }
 
+// A roller spall whose f_b is twice the mains frequency: its spin series (k - 1/2) f_b then sits
+// on the odd mains harmonics and f_b on the even ones. The spin series is not scored, so its
+// windows must not take the mains comb's reference lines away: without references the line on
+// f_b could not be tested against its comb and the spall, carried by f_b and its f_c sidebands,
+// would be called healthy (as a lumped spalled record at 1059 rpm was).
+TEST(DetectionNuisance, SpinSeriesWindowsLeaveTheMainsCombItsReferenceLines) {
+  const double mains = 50.0;
+  const auto bearing = CustomBearing(13, 6.5, 38.5, 0.0);  // the N205EM's geometry
+  const double f_b_per_shaft = ComputeFrequencies(bearing, 1.0).f_b_hz;
+  const double shaft = 2.0 * mains / f_b_per_shaft;  // f_b = 100 Hz
+  const auto f = ComputeFrequencies(bearing, shaft);
+  const FaultFamily roller = MakeFaultFamilies(f, {.harmonics = 5})[2];
+  ASSERT_EQ(roller.component, FaultComponent::kRollingElement);
+  DetectionContext ctx;
+  ctx.shaft_hz = shaft;
+  ctx.exclude_shaft = false;  // the shaft's orders are not what is tested here
+  DetectionOptions o;
+  o.mains_hz = {mains};
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    auto power = NoisePower(2000, seed);
+    AddLine(&power, 2.0 * mains, 400.0);
+    AddLine(&power, 2.0 * mains - f.cage_hz, 150.0);
+    AddLine(&power, 2.0 * mains + f.cage_hz, 150.0);
+    const auto s = NormalizeSpectrum(power, kDf);
+    const FamilyDetection d = DetectFamily(s, roller, ctx, o);
+    const LineEvidence& h1 = Harmonic(d, 1);
+    EXPECT_EQ(h1.exclusion, "mains");
+    EXPECT_GT(h1.nuisance_z, 0.0) << "seed " << seed << ": the mains comb has no reference line";
+    EXPECT_TRUE(h1.significant) << "seed " << seed;
+    EXPECT_TRUE(d.detected) << "seed " << seed << ": " << d.reason;
+  }
+}
+
 // Every line capped (max_line_score): many speed scales tie; the table must sit on the peaks
 // (the largest uncapped evidence), not on the strong leakage two bins beside them.
 TEST(DetectionNuisance, TiedCappedCombReportsThePeaksNotTheirLeakage) {
