@@ -51,7 +51,7 @@ bool FamilyDetection::family_evidence() const {
     ++(h.line.half_order ? half_orders : integer_orders);
   }
   if (integer_orders >= 1 && half_orders >= 1 && integer_orders + half_orders >= 3) return true;
-  // One harmonic with both of its sidebands.
+  // One harmonic with both of its sidebands: a single defect's load-zone modulation.
   for (const auto& h : lines) {
     if (h.line.is_sideband() || h.line.half_order || !h.significant) continue;
     int sb = 0;
@@ -59,7 +59,12 @@ bool FamilyDetection::family_evidence() const {
       if (s.line.is_sideband() && s.line.harmonic == h.line.harmonic && s.significant) ++sb;
     if (sb >= 2) return true;
   }
-  return false;
+  // Several defective rollers pass the load zone at their own cage angles with their own spin
+  // phases, so at each harmonic their f_c sidebands add with other phases on the two sides
+  // (j f_b + m f_c: sum over rollers of a_k e^{-i j phi_k} e^{i m 2 pi s_k / Z}) and one side can
+  // cancel: one f_b harmonic and two sidebands of any harmonics.
+  return component == FaultComponent::kRollingElement && integer_orders >= 1 &&
+         significant_sidebands >= min_sidebands;
 }
 
 namespace {

@@ -1,0 +1,76 @@
+// The family rule on line patterns: one f_b harmonic with single f_c sidebands at two harmonics is
+// a roller spall (several defective rollers' sidebands cancel on one side), while a race family
+// still needs both sidebands of one harmonic.
+#include <gtest/gtest.h>
+
+#include "dsp/detection.h"
+#include "tests/dsp/spectral_test_signals.h"
+
+namespace spallkit::dsp {
+namespace {
+
+using test_signals::AddLine;
+using test_signals::NoisePower;
+
+constexpr double kDf = 1.0;
+constexpr double kShaftHz = 20.0;  // 1200 rpm
+
+const FaultFamily& Family(const std::vector<FaultFamily>& families, FaultComponent c) {
+  for (const auto& f : families)
+    if (f.component == c) return f;
+  throw std::logic_error("no family");
+}
+
+DetectionContext Context() {
+  DetectionContext ctx;
+  ctx.shaft_hz = kShaftHz;
+  ctx.exclude_shaft = false;  // the rule is tested, not the exclusions
+  ctx.exclude_mains = false;
+  return ctx;
+}
+
+// Noise with the carrier's first harmonic and one sideband (upper) at its first two harmonics.
+std::vector<double> OneSidedPattern(double carrier_hz, double sideband_hz, unsigned seed) {
+  auto power = NoisePower(2000, seed);
+  AddLine(&power, carrier_hz, kDf, 400.0);
+  AddLine(&power, carrier_hz + sideband_hz, kDf, 150.0);
+  AddLine(&power, 2.0 * carrier_hz + sideband_hz, kDf, 150.0);
+  return power;
+}
+
+TEST(FamilyRule, RollerHarmonicWithOneSidedSidebandsAtTwoHarmonicsIsARollerSpall) {
+  const auto families =
+      MakeFaultFamilies(ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz), {.harmonics = 5});
+  const FaultFamily& roller = Family(families, FaultComponent::kRollingElement);
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const auto s =
+        NormalizeSpectrum(OneSidedPattern(roller.fundamental_hz, roller.sideband_hz, seed), kDf);
+    const FamilyDetection d = DetectFamily(s, roller, Context());
+    EXPECT_EQ(d.significant_harmonics, 1) << "seed " << seed;
+    EXPECT_EQ(d.significant_sidebands, 2) << "seed " << seed;
+    EXPECT_TRUE(d.detected) << "seed " << seed << ": " << d.reason;
+  }
+}
+
+TEST(FamilyRule, RaceHarmonicWithOneSidedSidebandsIsNotAFamily) {
+  const auto families =
+      MakeFaultFamilies(ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz), {.harmonics = 5});
+  const FaultFamily& inner = Family(families, FaultComponent::kInnerRace);
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const auto s =
+        NormalizeSpectrum(OneSidedPattern(inner.fundamental_hz, inner.sideband_hz, seed), kDf);
+    const FamilyDetection d = DetectFamily(s, inner, Context());
+    EXPECT_EQ(d.significant_sidebands, 2) << "seed " << seed;
+    EXPECT_FALSE(d.detected) << "seed " << seed << ": " << d.reason;
+    // Both sidebands of the one harmonic: a single inner-race defect's modulation.
+    auto both = NoisePower(2000, seed);
+    AddLine(&both, inner.fundamental_hz, kDf, 400.0);
+    AddLine(&both, inner.fundamental_hz - inner.sideband_hz, kDf, 150.0);
+    AddLine(&both, inner.fundamental_hz + inner.sideband_hz, kDf, 150.0);
+    EXPECT_TRUE(DetectFamily(NormalizeSpectrum(both, kDf), inner, Context()).detected)
+        << "seed " << seed;
+  }
+}
+
+}  // namespace
+}  // namespace spallkit::dsp
