@@ -7,6 +7,7 @@
 
 #include "apps/cli_guard.h"
 #include "apps/command.h"
+#include "apps/identify_options.h"
 #include "apps/record_options.h"
 #include "core/constants.h"
 #include "core/error.h"
@@ -23,6 +24,7 @@ struct Opts {
   bool json = false;
   std::string plot_dir;
   int max_count = -1;
+  spallkit::apps::IdentifyStatementOptions statements;
   double sensor_angle_deg = 0.0;
   CLI::Option* sensor_option = nullptr;
 };
@@ -44,6 +46,7 @@ int Run(const Opts& o) {
   identify::IdentifyOptions io;
   if (o.load_option && o.load_option->count() > 0) io.radial_load_n = o.load_n;
   if (o.max_count >= 0) io.count.max_count = o.max_count;
+  o.statements.Apply(&io);
   if (o.sensor_option && o.sensor_option->count() > 0)
     io.count.sensor_angle_rad = o.sensor_angle_deg * kPi / 180.0;
   std::string error;
@@ -80,6 +83,7 @@ spallkit::apps::Register reg(
       sub.add_option("--max-count",
                      o->max_count,
                      "largest number of defective rollers tried (default: every roller)");
+      o->statements.Add(sub);
       o->sensor_option = sub.add_option(
           "--sensor-angle-deg",
           o->sensor_angle_deg,

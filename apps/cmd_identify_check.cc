@@ -10,6 +10,7 @@
 
 #include "apps/cli_guard.h"
 #include "apps/command.h"
+#include "apps/identify_options.h"
 #include "apps/output_paths.h"
 #include "core/atomic_file.h"
 #include "core/constants.h"
@@ -28,6 +29,7 @@ struct Opts {
   std::string csv;
   double sensor_angle_deg = 0.0;
   CLI::Option* sensor_option = nullptr;
+  spallkit::apps::IdentifyStatementOptions statements;
 };
 
 std::vector<double> ParseSnrList(const std::string& text) {
@@ -68,6 +70,7 @@ int Run(const Opts& o) {
   vo.give_load = !o.no_load;
   if (o.sensor_option && o.sensor_option->count() > 0)
     vo.identify.count.sensor_angle_rad = o.sensor_angle_deg * kPi / 180.0;
+  o.statements.Apply(&vo.identify);
   std::string error;
   if (!vo.IsValid(&error)) throw InputError(error);
   apps::OutputPaths paths;
@@ -108,6 +111,7 @@ spallkit::apps::Register reg(
                          o->sensor_angle_deg,
                          "the channel's direction from the load line, deg (as spall identify)");
       sub.add_flag("--no-load", o->no_load, "do not give Identify the scene's radial load");
+      o->statements.Add(sub);
       sub.add_option("--csv", o->csv, "write one row per record and SNR there");
       return [o] { return Run(*o); };
     });

@@ -44,6 +44,24 @@ TEST(IdentifyCli, TextReport) {
   EXPECT_NE(r.out.find("depth: not identifiable"), std::string::npos);
 }
 
+// A stricter stating threshold than the count's probability refuses the count and says why.
+TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
+  const auto base = RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json");
+  ASSERT_EQ(base.code, 0) << base.err;
+  const nlohmann::json j0 = nlohmann::json::parse(base.out);
+  ASSERT_EQ(j0["defective_rollers"]["count"], 1);
+  const double p = j0["defective_rollers"]["probabilities"]["1"].get<double>();
+  ASSERT_LT(p, 0.99);
+  const auto r = RunSpall("identify " + kSample +
+                          " --bearing N205EM --rpm 1200 --json --min-count-probability 0.99");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["defective_rollers"]["count"].is_null());
+  EXPECT_FALSE(j["identifiable"]["count"].get<bool>());
+  EXPECT_NE(j["identifiable"]["reasons"].dump().find("count: uncertain"), std::string::npos)
+      << j["identifiable"]["reasons"].dump();
+}
+
 // A clipped record: the diagnosis warns, and so does the identification's text report (the
 // clipping distorts the envelope the count and the width are fitted to).
 TEST(IdentifyCli, TextReportCarriesTheRecordWarnings) {
@@ -72,6 +90,9 @@ TEST(IdentifyCli, BadInputIsOneLineAndCode2) {
   for (const std::string& args :
        {"identify " + kSample + " --bearing N205EM --rpm 0",
         "identify " + kSample + " --bearing N205EM --rpm 1200 --load-n -3",
+        "identify " + kSample + " --bearing N205EM --rpm 1200 --min-count-probability 1.5",
+        "identify " + kSample + " --bearing N205EM --rpm 1200 --width-max-count 0",
+        "identify-check " + std::string(SPALLKIT_SOURCE_DIR) + " --min-count-probability 0",
         std::string("identify /nonexistent.csv --bearing N205EM --rpm 1200"),
         "identify " + kSample + " --bearing NOPE --rpm 1200",
         std::string("identify-check /nonexistent-folder"),

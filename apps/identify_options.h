@@ -1,0 +1,53 @@
+// When `spall identify` and `spall identify-check` state a count and a width
+// (IdentifyOptions::min_count_probability, width_max_count; docs/IDENTIFY.md): the defaults are
+// the calibrated ones, the options let a user be stricter or reproduce the documented
+// experiments.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <string>
+
+#include "apps/cli_guard.h"
+#include "core/error.h"
+#include "identify/identify.h"
+
+namespace spallkit::apps {
+
+struct IdentifyStatementOptions {
+  double min_count_probability = identify::IdentifyOptions().min_count_probability;
+  int width_max_count = identify::IdentifyOptions().width_max_count;
+  CLI::Option* probability_option = nullptr;
+  CLI::Option* width_count_option = nullptr;
+
+  void Add(CLI::App& sub) {
+    probability_option =
+        sub.add_option("--min-count-probability",
+                       min_count_probability,
+                       "state the count only when its probability reaches this (default " +
+                           Number(min_count_probability) + ")");
+    width_count_option =
+        sub.add_option("--width-max-count",
+                       width_max_count,
+                       "state the width only for at most this many defective rollers (default " +
+                           std::to_string(width_max_count) + ")");
+  }
+
+  // Throws InputError naming the option when a given value is out of range.
+  void Apply(identify::IdentifyOptions* o) const {
+    if (probability_option && probability_option->count() > 0) {
+      if (!(min_count_probability > 0.0 && min_count_probability <= 1.0))
+        throw InputError("--min-count-probability must be in (0, 1] (got " +
+                         Number(min_count_probability) + ")");
+      o->min_count_probability = min_count_probability;
+    }
+    if (width_count_option && width_count_option->count() > 0) {
+      if (width_max_count < 1)
+        throw InputError("--width-max-count must be >= 1 (got " + std::to_string(width_max_count) +
+                         ")");
+      o->width_max_count = width_max_count;
+    }
+  }
+};
+
+}  // namespace spallkit::apps
