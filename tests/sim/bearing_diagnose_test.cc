@@ -186,6 +186,47 @@ TEST(LumpedDiagnoseTest, HealthyBearingWithoutTheContactDampingStepIsHealthy) {
   for (dsp::Verdict v : verdicts(0.0)) EXPECT_EQ(v, dsp::Verdict::kHealthy);
 }
 
+// A case of the identification's simulated sets (datasets/sweeps/identify-*.toml): three
+// spalled rollers of one width and depth on the lumped model, dry friction 0.15 / 0.12, the
+// horizontal channel from 0.05 s, diagnosed.
+struct ThreeRollerCase {
+  int rollers[3];
+  double width_mm, depth_mm;
+  double angle_deg[3];
+  double load_n, rpm, duration_s;
+};
+
+spallkit::dsp::Diagnosis DiagnoseLumpedCase(const ThreeRollerCase& c) {
+  namespace sim = spallkit::sim;
+  auto num = [](double v) {  // every digit: the cases are chaotic enough for 1e-7 to matter
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return std::string(buf);
+  };
+  std::vector<std::string> set = {"model.fidelity=lumped",
+                                  "run.outputs=[\"acceleration\"]",
+                                  "friction.mu_static=0.15",
+                                  "friction.mu_dynamic=0.12",
+                                  "operation.radial_load_n=" + num(c.load_n),
+                                  "operation.speed_rpm=" + num(c.rpm),
+                                  "run.duration_s=" + num(c.duration_s)};
+  for (int k = 0; k < 3; ++k) {
+    const std::string d = "defects." + std::to_string(k) + ".";
+    set.push_back(d + "roller=" + std::to_string(c.rollers[k]));
+    set.push_back(d + "width_mm=" + num(c.width_mm));
+    set.push_back(d + "depth_mm=" + num(c.depth_mm));
+    set.push_back(d + "angle_deg=" + num(c.angle_deg[k]));
+  }
+  const sim::Scene scene = sim::LoadScene(
+      std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml", set);
+  sim::Simulation simulation(scene, {});
+  simulation.Run();
+  spallkit::Record r = sim::ToRecord(simulation, sim::AccelerationAxis::kHorizontal);
+  spallkit::DropStart(&r, 0.05);
+  const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
+  return spallkit::dsp::Diagnose(r, scene.geometry.bearing, shaft_hz);
+}
+
 // Three spalled rollers (slots 1, 2, 6; 1.68 mm; 1352 rpm, 7.2 kN, dry friction 0.15 / 0.12; a
 // case of the identification's 1-2 s report set, datasets/sweeps/identify-report-long.toml) on
 // the lumped model: the cage slips 1.8 % and the rollers' f_b 1.1 %, so the measured f_b / f_c
@@ -196,35 +237,15 @@ TEST(LumpedDiagnoseTest, HealthyBearingWithoutTheContactDampingStepIsHealthy) {
 // the comb goes to the cage only when the cage's harmonics also outweigh the roller's
 // (dsp/explain.h). About 4 s.
 TEST(LumpedDiagnoseTest, ThreeSpalledRollersWithASlippingCageAreTheRollerSpall) {
-  namespace sim = spallkit::sim;
   namespace dsp = spallkit::dsp;
-  const sim::Scene scene =
-      sim::LoadScene(std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml",
-                     {"model.fidelity=lumped",
-                      "run.outputs=[\"acceleration\"]",
-                      "friction.mu_static=0.15",
-                      "friction.mu_dynamic=0.12",
-                      "defects.0.roller=1",
-                      "defects.1.roller=2",
-                      "defects.2.roller=6",
-                      "defects.0.width_mm=1.6831320818163533",
-                      "defects.1.width_mm=1.6831320818163533",
-                      "defects.2.width_mm=1.6831320818163533",
-                      "defects.0.depth_mm=0.9060868776702237",
-                      "defects.1.depth_mm=0.9060868776702237",
-                      "defects.2.depth_mm=0.9060868776702237",
-                      "defects.0.angle_deg=328.9969995648117",
-                      "defects.1.angle_deg=92.18152357611976",
-                      "defects.2.angle_deg=239.4153247490316",
-                      "operation.radial_load_n=7236.445637546889",
-                      "operation.speed_rpm=1351.5052563410022",
-                      "run.duration_s=1.4482967526378718"});
-  sim::Simulation simulation(scene, {});
-  simulation.Run();
-  spallkit::Record r = sim::ToRecord(simulation, sim::AccelerationAxis::kHorizontal);
-  spallkit::DropStart(&r, 0.05);
-  const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
-  const dsp::Diagnosis d = dsp::Diagnose(r, scene.geometry.bearing, shaft_hz);
+  const dsp::Diagnosis d =
+      DiagnoseLumpedCase({{1, 2, 6},
+                          1.6831320818163533,
+                          0.9060868776702237,
+                          {328.9969995648117, 92.18152357611976, 239.4153247490316},
+                          7236.445637546889,
+                          1351.5052563410022,
+                          1.4482967526378718});
   SCOPED_TRACE(d.BriefReport());
   EXPECT_EQ(d.verdict, dsp::Verdict::kRollingElement);
   // The case this test is about: the ratio on 14, resolved, and a cage comb detected beside it.
@@ -243,35 +264,15 @@ TEST(LumpedDiagnoseTest, ThreeSpalledRollersWithASlippingCageAreTheRollerSpall) 
 // harmonic and two sidebands of any harmonics (dsp/detection.h); on the both-sides rule alone
 // the record was "healthy". About 3 s.
 TEST(LumpedDiagnoseTest, ThreeAdjacentSpalledRollersWithOneSidedSidebandsAreTheRollerSpall) {
-  namespace sim = spallkit::sim;
   namespace dsp = spallkit::dsp;
-  const sim::Scene scene =
-      sim::LoadScene(std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/paper-verification.toml",
-                     {"model.fidelity=lumped",
-                      "run.outputs=[\"acceleration\"]",
-                      "friction.mu_static=0.15",
-                      "friction.mu_dynamic=0.12",
-                      "defects.0.roller=5",
-                      "defects.1.roller=6",
-                      "defects.2.roller=7",
-                      "defects.0.width_mm=1.6603116753154061",
-                      "defects.1.width_mm=1.6603116753154061",
-                      "defects.2.width_mm=1.6603116753154061",
-                      "defects.0.depth_mm=0.9588876640705507",
-                      "defects.1.depth_mm=0.9588876640705507",
-                      "defects.2.depth_mm=0.9588876640705507",
-                      "defects.0.angle_deg=168.23018883265422",
-                      "defects.1.angle_deg=4.3968739947765334",
-                      "defects.2.angle_deg=46.941437785674957",
-                      "operation.radial_load_n=6447.5735471528815",
-                      "operation.speed_rpm=1704.5410540402509",
-                      "run.duration_s=1.05"});
-  sim::Simulation simulation(scene, {});
-  simulation.Run();
-  spallkit::Record r = sim::ToRecord(simulation, sim::AccelerationAxis::kHorizontal);
-  spallkit::DropStart(&r, 0.05);
-  const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
-  const dsp::Diagnosis d = dsp::Diagnose(r, scene.geometry.bearing, shaft_hz);
+  const dsp::Diagnosis d =
+      DiagnoseLumpedCase({{5, 6, 7},
+                          1.6603116753154061,
+                          0.9588876640705507,
+                          {168.23018883265422, 4.3968739947765334, 46.941437785674957},
+                          6447.5735471528815,
+                          1704.5410540402509,
+                          1.05});
   SCOPED_TRACE(d.BriefReport());
   EXPECT_EQ(d.verdict, dsp::Verdict::kRollingElement);
   // The case this test is about: no f_b harmonic with both of its sidebands significant.
