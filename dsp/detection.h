@@ -23,7 +23,10 @@
 // (families x candidate bands):  p = min(1, mult C Q(M, S)), Q the regularised upper incomplete
 // gamma. Detected iff p <= false_alarm_probability AND the evidence is a family: >= 2 harmonics
 // individually significant (p_l <= line_p_value), or one harmonic together with both of its
-// expected sidebands. Lines that coincide with a shaft harmonic (m f_r, at the comb's speed and at
+// expected sidebands; for the rolling element also 3 lines of f_b and its spin series (k - 1/2)
+// f_b with at least one of each, or one f_b harmonic and 2 f_c sidebands of any harmonics
+// (several defective rollers' sidebands cancel on one side; FamilyDetection::family_evidence).
+// Lines that coincide with a shaft harmonic (m f_r, at the comb's speed and at
 // the measured speed) or a mains harmonic (m 50, m 60 Hz) are excluded from the evidence (neither
 // counted nor scored): any machine has them.
 #pragma once
@@ -59,8 +62,8 @@ struct DetectionOptions {
   // harmonics: a bare harmonic comb at 5.4 orders is what CWRU's healthy record 97 has.
   int min_sidebands = 2;
   // A shaft/mains-excluded line is tested against its nuisance comb only when that comb has at
-  // least this many reference lines (in the searched range, outside every line's search window
-  // of the family) to take the strongest from.
+  // least this many reference lines (in the searched range, outside every scored line's search
+  // window of the family: the spin series is not scored) to take the strongest from.
   int min_nuisance_references = 3;
   // Effect size: a significant line must also modulate at least this fraction of the band's
   // mean squared envelope (level / mean(SE); an AM depth m gives m, a sharp impulse train ~1 per
