@@ -5,7 +5,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <cmath>
 #include <string>
 
 #include "apps/cli_guard.h"

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The identification's validation on simulated records (docs/IDENTIFY.md, "Validation on
+# simulated records") in one command: generates the five sets of datasets/sweeps/identify-*.toml
+# (lumped model; `spall dataset run` resumes a folder it finds part-done), runs `spall
+# identify-check` on each at clean, 10 and 0 dB (horizontal channel, the scene's load given) and
+# prints one table of counts right / wrong / refused and widths stated / within 15 %.
+#
+#   bash scripts/identify_validation.sh [OUT_DIR]      (default runs/identify)
+#
+# Extra `spall identify-check` options pass through SPALLKIT_CHECK_ARGS, e.g.
+# SPALLKIT_CHECK_ARGS="--width-max-count 3". About 6 min of generation and 4 min of checks on
+# 2 cores. Uses build/apps/spall (SPALLKIT_SPALL overrides).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SPALL=${SPALLKIT_SPALL:-build/apps/spall}
+OUT=${1:-runs/identify}
+SETS="report report-long tune width width-multi"
+WORKERS=$(nproc)
+mkdir -p "$OUT"
+for set in $SETS; do
+  echo "== generate identify-$set ($OUT/$set)" >&2
+  "$SPALL" dataset run "datasets/sweeps/identify-$set.toml" --out "$OUT/$set" \
+    --workers "$WORKERS" >"$OUT/$set.generate.txt"
+done
+for set in $SETS; do
+  echo "== check identify-$set" >&2
+  # shellcheck disable=SC2086  # the extra arguments are words
+  "$SPALL" identify-check "$OUT/$set" --channel /signals/accel_z --sensor-angle-deg 90 \
+    --snr-db inf,10,0 --csv "$OUT/$set.csv" ${SPALLKIT_CHECK_ARGS:-} >"$OUT/$set.check.txt"
+done
+printf '%-12s %-6s %-22s %s\n' set SNR "count right/wrong/ref" "widths stated (within 15 %)"
+for set in $SETS; do
+  awk -v set="$set" '
+    /^SNR / { snr = $2; sub(":", "", snr) }
+    /^ *spalled records:/ {
+      match($0, /count right [0-9]+/); right = substr($0, RSTART + 12, RLENGTH - 12)
+      match($0, /wrong [0-9]+/); wrong = substr($0, RSTART + 6, RLENGTH - 6)
+      match($0, /refused [0-9]+/); refused = substr($0, RSTART + 8, RLENGTH - 8)
+      match($0, /spalled records: [0-9]+/); spalled = substr($0, RSTART + 17, RLENGTH - 17)
+    }
+    /width stated on/ {
+      stated = $4; within = 0
+      if (match($0, /within 15 % [0-9]+/)) within = substr($0, RSTART + 12, RLENGTH - 12)
+      printf "%-12s %-6s %-22s %s of %s (%s)\n", set, snr, right "/" wrong "/" refused, stated,
+             spalled, within
+    }' "$OUT/$set.check.txt"
+done
