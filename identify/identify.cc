@@ -434,6 +434,20 @@ std::string Identification::ToJson(int indent) const {
     }
   }
   j["fit"] = fit;
+  // What decided the statements: with these a reader can tell "uncertain" from "not stated here".
+  ordered_json settings;
+  settings["min_count_probability"] = options.min_count_probability;
+  settings["width_max_count"] = options.width_max_count;
+  settings["max_count"] =
+      options.count.max_count >= 0 ? ordered_json(options.count.max_count) : ordered_json(nullptr);
+  settings["radial_load_n"] =
+      options.radial_load_n ? ordered_json(*options.radial_load_n) : ordered_json(nullptr);
+  settings["sensor_angle_deg"] = options.count.sensor_angle_rad
+                                     ? ordered_json(*options.count.sensor_angle_rad * 180.0 / kPi)
+                                     : ordered_json(nullptr);
+  settings["temperatures"] = {{"cage_average", options.count.temperature_cage},
+                              {"sidebands", options.count.temperature_sidebands}};
+  j["settings"] = settings;
   return j.dump(indent);
 }
 

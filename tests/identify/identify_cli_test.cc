@@ -23,7 +23,8 @@ TEST(IdentifyCli, JsonHasTheDocumentedKeys) {
       RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --load-n 10000 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  for (const char* k : {"defective_rollers", "width_mm", "identifiable", "diagnosis", "fit"})
+  for (const char* k :
+       {"defective_rollers", "width_mm", "identifiable", "diagnosis", "fit", "settings"})
     EXPECT_TRUE(j.contains(k)) << k;
   const auto& dr = j["defective_rollers"];
   for (const char* k : {"count", "probabilities", "positions_deg"})
@@ -58,6 +59,10 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["defective_rollers"]["count"].is_null());
   EXPECT_FALSE(j["identifiable"]["count"].get<bool>());
+  EXPECT_DOUBLE_EQ(j["settings"]["min_count_probability"].get<double>(), 0.99);
+  EXPECT_LT(j0["settings"]["min_count_probability"].get<double>(), 0.99);  // the default
+  EXPECT_TRUE(j0["settings"]["width_max_count"].is_number_integer());
+  EXPECT_TRUE(j0["settings"]["radial_load_n"].is_null());  // no --load-n
   EXPECT_NE(j["identifiable"]["reasons"].dump().find("count: uncertain"), std::string::npos)
       << j["identifiable"]["reasons"].dump();
 }
