@@ -168,7 +168,8 @@ Identification Identify(const Record& record,
            "average: the impacts are not load-modulated)");
     } else if (cf.probability[k] < options.min_count_probability) {
       count_reason = ("count: uncertain (most probable " + std::to_string(k) +
-                      " with P = " + FormatNumber("%.2f", cf.probability[k]) + ")");
+                      " with P = " + FormatNumber("%.2f", cf.probability[k]) + ", below the " +
+                      FormatNumber("%.2f", options.min_count_probability) + " a count needs)");
     } else if (disagree) {
       count_reason = ("count: not identifiable (cage average says " +
                       std::to_string(argmax(cf.probability_cage)) + ", sidebands say " +

@@ -65,6 +65,9 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
   EXPECT_TRUE(j0["settings"]["radial_load_n"].is_null());  // no --load-n
   EXPECT_NE(j["identifiable"]["reasons"].dump().find("count: uncertain"), std::string::npos)
       << j["identifiable"]["reasons"].dump();
+  EXPECT_NE(j["identifiable"]["reasons"].dump().find("below the 0.99 a count needs"),
+            std::string::npos)
+      << j["identifiable"]["reasons"].dump();
 }
 
 // A clipped record: the diagnosis warns, and so does the identification's text report (the
