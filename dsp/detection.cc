@@ -62,9 +62,11 @@ bool FamilyDetection::family_evidence() const {
   // Several defective rollers pass the load zone at their own cage angles with their own spin
   // phases, so at each harmonic their f_c sidebands add with other phases on the two sides
   // (j f_b + m f_c: sum over rollers of a_k e^{-i j phi_k} e^{i m 2 pi s_k / Z}) and one side can
-  // cancel: one f_b harmonic and two sidebands of any harmonics.
+  // cancel, and the spin series stands only where the two races' impacts differ: one f_b
+  // harmonic and two more lines that no bare f_b comb has, f_c sidebands of any harmonics or
+  // spin-series lines.
   return component == FaultComponent::kRollingElement && integer_orders >= 1 &&
-         significant_sidebands >= min_sidebands;
+         significant_sidebands + half_orders >= min_sidebands;
 }
 
 namespace {

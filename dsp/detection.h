@@ -24,8 +24,9 @@
 // gamma. Detected iff p <= false_alarm_probability AND the evidence is a family: >= 2 harmonics
 // individually significant (p_l <= line_p_value), or one harmonic together with both of its
 // expected sidebands; for the rolling element also 3 lines of f_b and its spin series (k - 1/2)
-// f_b with at least one of each, or one f_b harmonic and 2 f_c sidebands of any harmonics
-// (several defective rollers' sidebands cancel on one side; FamilyDetection::family_evidence).
+// f_b with at least one of each, or one f_b harmonic and 2 more lines no bare f_b comb has (f_c
+// sidebands of any harmonics, spin-series lines; several defective rollers' sidebands cancel on
+// one side; FamilyDetection::family_evidence).
 // Lines that coincide with a shaft harmonic (m f_r, at the comb's speed and at
 // the measured speed) or a mains harmonic (m 50, m 60 Hz) are excluded from the evidence (neither
 // counted nor scored): any machine has them.

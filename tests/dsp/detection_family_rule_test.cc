@@ -1,6 +1,7 @@
-// The family rule on line patterns: one f_b harmonic with single f_c sidebands at two harmonics is
-// a roller spall (several defective rollers' sidebands cancel on one side), while a race family
-// still needs both sidebands of one harmonic.
+// The family rule on line patterns: one f_b harmonic with two more lines of the roller's own
+// pattern (single f_c sidebands at two harmonics: several defective rollers' sidebands cancel on
+// one side; or a sideband and a spin-series line) is a roller spall, while a race family still
+// needs both sidebands of one harmonic.
 #include <gtest/gtest.h>
 
 #include "dsp/detection.h"
@@ -49,6 +50,27 @@ TEST(FamilyRule, RollerHarmonicWithOneSidedSidebandsAtTwoHarmonicsIsARollerSpall
     EXPECT_EQ(d.significant_harmonics, 1) << "seed " << seed;
     EXPECT_EQ(d.significant_sidebands, 2) << "seed " << seed;
     EXPECT_TRUE(d.detected) << "seed " << seed << ": " << d.reason;
+  }
+}
+
+// The carrier, one spin-series line and one sideband: three lines of the roller's own pattern
+// (no bare f_b comb has the last two). The carrier with one sideband alone is not a family.
+TEST(FamilyRule, RollerHarmonicWithASpinLineAndASidebandIsARollerSpall) {
+  const auto families =
+      MakeFaultFamilies(ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz), {.harmonics = 5});
+  const FaultFamily& roller = Family(families, FaultComponent::kRollingElement);
+  const double f_b = roller.fundamental_hz, f_c = roller.sideband_hz;
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    auto power = NoisePower(2000, seed);
+    AddLine(&power, f_b, kDf, 400.0);
+    AddLine(&power, f_b + f_c, kDf, 150.0);
+    const FamilyDetection two = DetectFamily(NormalizeSpectrum(power, kDf), roller, Context());
+    EXPECT_EQ(two.significant_sidebands, 1) << "seed " << seed;
+    EXPECT_FALSE(two.detected) << "seed " << seed << ": " << two.reason;
+    AddLine(&power, 1.5 * f_b, kDf, 150.0);
+    const FamilyDetection three = DetectFamily(NormalizeSpectrum(power, kDf), roller, Context());
+    EXPECT_EQ(three.significant_harmonics, 2) << "seed " << seed;  // f_b and 1.5 f_b
+    EXPECT_TRUE(three.detected) << "seed " << seed << ": " << three.reason;
   }
 }
 
