@@ -16,18 +16,22 @@ using test_signals::NoisePower;
 constexpr double kDf = 1.0;
 constexpr double kShaftHz = 20.0;  // 1200 rpm
 
-const FaultFamily& Family(const std::vector<FaultFamily>& families, FaultComponent c) {
-  for (const auto& f : families)
+// The N205EM's family of component c at 1200 rpm.
+FaultFamily N205emFamily(FaultComponent c) {
+  for (const auto& f :
+       MakeFaultFamilies(ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz), {.harmonics = 5}))
     if (f.component == c) return f;
   throw std::logic_error("no family");
 }
 
-DetectionContext Context() {
+// The family's detection in a power spectrum (bins kDf apart), the rule tested, not the
+// exclusions.
+FamilyDetection Detect(const std::vector<double>& power, const FaultFamily& family) {
   DetectionContext ctx;
   ctx.shaft_hz = kShaftHz;
-  ctx.exclude_shaft = false;  // the rule is tested, not the exclusions
+  ctx.exclude_shaft = false;
   ctx.exclude_mains = false;
-  return ctx;
+  return DetectFamily(NormalizeSpectrum(power, kDf), family, ctx);
 }
 
 // Noise with the carrier's first harmonic and one sideband (upper) at its first two harmonics.
@@ -40,13 +44,10 @@ std::vector<double> OneSidedPattern(double carrier_hz, double sideband_hz, unsig
 }
 
 TEST(FamilyRule, RollerHarmonicWithOneSidedSidebandsAtTwoHarmonicsIsARollerSpall) {
-  const auto families =
-      MakeFaultFamilies(ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz), {.harmonics = 5});
-  const FaultFamily& roller = Family(families, FaultComponent::kRollingElement);
+  const FaultFamily roller = N205emFamily(FaultComponent::kRollingElement);
   for (unsigned seed = 1; seed <= 5; ++seed) {
-    const auto s =
-        NormalizeSpectrum(OneSidedPattern(roller.fundamental_hz, roller.sideband_hz, seed), kDf);
-    const FamilyDetection d = DetectFamily(s, roller, Context());
+    const FamilyDetection d =
+        Detect(OneSidedPattern(roller.fundamental_hz, roller.sideband_hz, seed), roller);
     EXPECT_EQ(d.significant_harmonics, 1) << "seed " << seed;
     EXPECT_EQ(d.significant_sidebands, 2) << "seed " << seed;
     EXPECT_TRUE(d.detected) << "seed " << seed << ": " << d.reason;
@@ -56,32 +57,27 @@ TEST(FamilyRule, RollerHarmonicWithOneSidedSidebandsAtTwoHarmonicsIsARollerSpall
 // The carrier, one spin-series line and one sideband: three lines of the roller's own pattern
 // (no bare f_b comb has the last two). The carrier with one sideband alone is not a family.
 TEST(FamilyRule, RollerHarmonicWithASpinLineAndASidebandIsARollerSpall) {
-  const auto families =
-      MakeFaultFamilies(ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz), {.harmonics = 5});
-  const FaultFamily& roller = Family(families, FaultComponent::kRollingElement);
+  const FaultFamily roller = N205emFamily(FaultComponent::kRollingElement);
   const double f_b = roller.fundamental_hz, f_c = roller.sideband_hz;
   for (unsigned seed = 1; seed <= 5; ++seed) {
     auto power = NoisePower(2000, seed);
     AddLine(&power, f_b, kDf, 400.0);
     AddLine(&power, f_b + f_c, kDf, 150.0);
-    const FamilyDetection two = DetectFamily(NormalizeSpectrum(power, kDf), roller, Context());
+    const FamilyDetection two = Detect(power, roller);
     EXPECT_EQ(two.significant_sidebands, 1) << "seed " << seed;
     EXPECT_FALSE(two.detected) << "seed " << seed << ": " << two.reason;
     AddLine(&power, 1.5 * f_b, kDf, 150.0);
-    const FamilyDetection three = DetectFamily(NormalizeSpectrum(power, kDf), roller, Context());
+    const FamilyDetection three = Detect(power, roller);
     EXPECT_EQ(three.significant_harmonics, 2) << "seed " << seed;  // f_b and 1.5 f_b
     EXPECT_TRUE(three.detected) << "seed " << seed << ": " << three.reason;
   }
 }
 
 TEST(FamilyRule, RaceHarmonicWithOneSidedSidebandsIsNotAFamily) {
-  const auto families =
-      MakeFaultFamilies(ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz), {.harmonics = 5});
-  const FaultFamily& inner = Family(families, FaultComponent::kInnerRace);
+  const FaultFamily inner = N205emFamily(FaultComponent::kInnerRace);
   for (unsigned seed = 1; seed <= 5; ++seed) {
-    const auto s =
-        NormalizeSpectrum(OneSidedPattern(inner.fundamental_hz, inner.sideband_hz, seed), kDf);
-    const FamilyDetection d = DetectFamily(s, inner, Context());
+    const FamilyDetection d =
+        Detect(OneSidedPattern(inner.fundamental_hz, inner.sideband_hz, seed), inner);
     EXPECT_EQ(d.significant_sidebands, 2) << "seed " << seed;
     EXPECT_FALSE(d.detected) << "seed " << seed << ": " << d.reason;
     // Both sidebands of the one harmonic: a single inner-race defect's modulation.
@@ -89,8 +85,7 @@ TEST(FamilyRule, RaceHarmonicWithOneSidedSidebandsIsNotAFamily) {
     AddLine(&both, inner.fundamental_hz, kDf, 400.0);
     AddLine(&both, inner.fundamental_hz - inner.sideband_hz, kDf, 150.0);
     AddLine(&both, inner.fundamental_hz + inner.sideband_hz, kDf, 150.0);
-    EXPECT_TRUE(DetectFamily(NormalizeSpectrum(both, kDf), inner, Context()).detected)
-        << "seed " << seed;
+    EXPECT_TRUE(Detect(both, inner).detected) << "seed " << seed;
   }
 }
 
