@@ -45,6 +45,7 @@ bool IdentifyOptions::IsValid(std::string* error) const {
   if (!(min_delay_significance >= 0)) return fail("identify: min_delay_significance must be >= 0");
   if (!(max_width_relative_half_interval > 0))
     return fail("identify: max_width_relative_half_interval must be > 0");
+  if (!(cross_lag_half_width_s >= 0)) return fail("identify: cross_lag_half_width_s must be >= 0");
   if (!(width_max_diameter_fraction > 0 && width_max_diameter_fraction <= 1))
     return fail("identify: width_max_diameter_fraction must be in (0, 1]");
   return count.IsValid(error) && width.IsValid(error);
@@ -243,22 +244,30 @@ Identification Identify(const Record& record,
     width_reason = "width: not identifiable (no delay range at this speed and sample rate)";
     return finish();
   }
-  if (id.count_identifiable && id.count >= 2) {
-    // Other rollers' impacts fall at fixed lags from one roller's: leave those lags out.
+  // Other rollers' impacts fall at fixed lags from one roller's (their spin phases, one
+  // impact per half turn each). Those lags are not left out of the fit: a release-landing delay
+  // can lie near one, and the fit then still finds it; a delay that lands on one is refused below.
+  std::vector<double>& cross_lags = id.other_rollers_lags_s;
+  if (id.count >= 2) {
     const std::vector<double>& ph = id.count_fit.best[id.count].spin_phase_rad;
     const double half_turn = 0.5 / id.spin_hz;
     for (size_t a = 0; a < ph.size(); ++a)
       for (size_t b = a + 1; b < ph.size(); ++b) {
         double lag = std::fmod((ph[b] - ph[a]) / (2.0 * kPi * id.spin_hz), half_turn);
         if (lag < 0) lag += half_turn;
-        wo.excluded_lags_s.push_back(lag);
-        wo.excluded_lags_s.push_back(half_turn - lag);
+        cross_lags.push_back(lag);
+        cross_lags.push_back(half_turn - lag);
       }
   }
   wo.noise_correlation_s = 1.0 / (id.width_band_high_hz - id.width_band_low_hz);
   const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
   id.width_fit = FitEntryExit(sew, fs, zone, block, wo);
   const WidthFit& wf = id.width_fit;
+  double cross_lag = -1.0;  // the other rollers' lag nearest to the delay, if within the window
+  for (double lag : cross_lags)
+    if (std::abs(wf.best.delay_s - lag) < options.cross_lag_half_width_s &&
+        (cross_lag < 0 || std::abs(wf.best.delay_s - lag) < std::abs(wf.best.delay_s - cross_lag)))
+      cross_lag = lag;
   // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
   // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
   const double release_angle =
@@ -274,6 +283,11 @@ Identification Identify(const Record& record,
   std::string& why = width_reason;
   if (!wf.usable) {
     why = "width: not identifiable (" + wf.message + ")";
+  } else if (cross_lag >= 0) {
+    why = "width: not identifiable (the second event at " +
+          FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms lies on another defective roller's " +
+          "impacts (" + FormatNumber("%.2f", cross_lag * 1e3) +
+          " ms from the spin phases): their correlation, not a release and landing)";
   } else if (wf.delay_power_significance < options.min_delay_significance) {
     why = "width: not identifiable (no entry event resolved before the impacts: significance " +
           FormatNumber("%.1f", wf.delay_power_significance) + ")";
@@ -422,6 +436,9 @@ std::string Identification::ToJson(int indent) const {
           {"power_ratio", width_fit.best.PairPowerRatio()},
           {"rise_ms", width_fit.best.rise_s * 1e3},
           {"decay_ms", width_fit.best.decay_s * 1e3}};
+      std::vector<double> lags_ms;
+      for (double lag : other_rollers_lags_s) lags_ms.push_back(lag * 1e3);
+      fit["delay_ms"]["other_rollers_lags"] = lags_ms;
     }
     fit["width_resolution_mm"] = width_resolution_m * 1e3;
     fit["width_calibration"] = {{"contact_release", options.width_contact_release},

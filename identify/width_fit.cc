@@ -279,14 +279,6 @@ void Summarise(EnvelopeCorrelation* r, const std::vector<int>& use) {
   for (double& s : r->sigma) s = std::max(s, 1e-9 * peak + 1e-300);
 }
 
-// Lags near another roller's impacts get a standard error so large they do not count.
-void ExcludeLags(EnvelopeCorrelation* r, const WidthFitOptions& o) {
-  for (size_t i = 0; i < r->sigma.size(); ++i)
-    for (double lag : o.excluded_lags_s)
-      if (std::abs(r->TauSeconds(static_cast<int>(i)) - lag) <= o.excluded_half_width_s)
-        r->sigma[i] = 1e6 * (std::abs(r->mean[0]) + 1e-300);
-}
-
 }  // namespace
 
 bool WidthFitOptions::IsValid(std::string* error) const {
@@ -374,7 +366,6 @@ WidthFit FitEntryExit(std::span<const double> se,
     out.message = "only " + std::to_string(out.blocks) + " cage revolutions with load-zone samples";
     return out;
   }
-  ExcludeLags(&out.correlation, o);
   Bounds bd;
   bd.min_delay = o.min_delay_s > 0 ? o.min_delay_s : 2.0 / rate_hz;
   bd.max_delay = o.max_delay_s;
@@ -394,7 +385,6 @@ WidthFit FitEntryExit(std::span<const double> se,
     std::vector<int> use(out.blocks);
     for (int& u : use) u = pick(rng);
     Summarise(&resample, use);
-    ExcludeLags(&resample, o);
     // From the best fit and from the grid's best: a resample may sit in another basin.
     EntryExitFit f = Fit(resample, lags, bd, &out.best, o.delay_grid, nullptr, 20);
     delays.push_back(f.delay_s);

@@ -9,8 +9,10 @@
 // i.e. the average over all passages of each passage's envelope times itself delayed, which needs
 // no alignment of the passages: the entry-exit pair puts a peak at tau = dt whatever the
 // passage-to-passage slip, noise only adds near tau = 0 (its correlation time is 1 / band width),
-// and impacts of other rollers or of the other race fall at unrelated lags (> 1 / f_b apart,
-// flat). Passages are not aligned on their exit peaks: aligning on noisy peaks sharpens the exit
+// and impacts of the other race fall a half spin turn (1 / f_b) away. Another defective roller's
+// impacts correlate at the lag of the two rollers' spin phases: the fit does not know them, and
+// the identification refuses a delay that lands on one (IdentifyOptions::cross_lag_half_width_s).
+// Passages are not aligned on their exit peaks: aligning on noisy peaks sharpens the exit
 // and shifts the entry (on 10 dB synthetic records dt comes out 13 % long, with bootstrap
 // intervals that miss the truth).
 //
@@ -44,10 +46,6 @@ struct WidthFitOptions {
   int delay_grid = 80;
   int bootstrap = 200;
   int min_blocks = 3;  // blocks (cage revolutions) with load-zone samples
-  // Lags left out of the fit (+/- excluded_half_width_s around each): where other defective
-  // rollers' impacts fall relative to one roller's (from the count's spin phases).
-  std::vector<double> excluded_lags_s;
-  double excluded_half_width_s = 0.4e-3;
   // Correlation time of the band's noise (about 1 / band width; the Gaussian peak P_n at tau = 0
   // takes it); 0: one sample (white).
   double noise_correlation_s = 0.0;

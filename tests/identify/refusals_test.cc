@@ -56,6 +56,29 @@ TEST(Refusals, WidthBelowTheResolutionIsNotStated) {
   EXPECT_EQ(id.width_m, 0.0);
 }
 
+// Two rollers with spalls too narrow to give a pair of their own (0.3 mm at 1200 rpm: 0.13 ms),
+// 25 deg apart in spin phase: each roller's impacts correlate with the other's at 1.2 ms, which
+// reads as a 1.4 mm spall. The delay lies on the lag of the two rollers' spin phases, so no width
+// is stated; without that rule (cross_lag_half_width_s = 0) the wrong width would be.
+TEST(Refusals, DelayOnAnotherRollersImpactsIsNotAWidth) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0, 0.3, 0}, {1, 0.3, 25}}, 2));
+  IdentifyOptions o = SignalModelOptions();
+  o.width_max_count = 2;
+  const Identification id = IdentifyRecord(r, 1200, 10000, o);
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  ASSERT_EQ(id.count, 2);
+  EXPECT_FALSE(id.width_identifiable) << id.BriefReport();
+  bool said = false;
+  for (const std::string& why : id.reasons)
+    said = said || why.find("another defective roller's impacts") != std::string::npos;
+  EXPECT_TRUE(said) << id.BriefReport();
+
+  o.cross_lag_half_width_s = 0.0;
+  const Identification unguarded = IdentifyRecord(r, 1200, 10000, o);
+  ASSERT_TRUE(unguarded.width_identifiable) << unguarded.BriefReport();
+  EXPECT_GT(unguarded.width_m, 1.0e-3);  // the cross correlation read as a wide spall
+}
+
 // A width beyond the calibration's widest (IdentifyOptions::width_max_diameter_fraction) is not
 // stated: a 3.5 mm spall on the 6.5 mm roller (0.54 of it) of the synthetic signal model, whose
 // width relation is exact up to the fit's own 0.8, is stated there and refused with the

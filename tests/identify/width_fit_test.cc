@@ -115,6 +115,33 @@ TEST(WidthFit, WidthOfASyntheticSpall) {
   EXPECT_GE(id.width_high_m, 1.8e-3);
 }
 
+// Two spalled rollers of one width (slots 0 and 4, spin phases 30 and 150 deg): the other
+// roller's impacts fall at lags the fit leaves out (from the count's spin phases), and the
+// width is stated with the default width_max_count (2); with 1 it is refused and says why.
+TEST(WidthFit, WidthOfTwoSyntheticSpalledRollers) {
+  const Record r = MakeSyntheticRecord(
+      spallkit::testing::RollerRecordSpec(900, 15, {{0, 1.8, 30}, {4, 1.8, 150}}, 3));
+  IdentifyOptions o = SignalModelOptions();
+  o.width_max_count = IdentifyOptions().width_max_count;
+  ASSERT_EQ(o.width_max_count, 2);
+  const Identification id = spallkit::testing::IdentifyRecord(r, 900, 10000, o);
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  ASSERT_EQ(id.count, 2) << id.BriefReport();
+  ASSERT_TRUE(id.width_identifiable) << id.BriefReport();
+  EXPECT_NEAR(id.width_m, 1.8e-3, 0.1 * 1.8e-3);
+  EXPECT_LE(id.width_low_m, 1.8e-3);
+  EXPECT_GE(id.width_high_m, 1.8e-3);
+
+  o.width_max_count = 1;
+  const Identification one = spallkit::testing::IdentifyRecord(r, 900, 10000, o);
+  EXPECT_EQ(one.count, 2);
+  EXPECT_FALSE(one.width_identifiable);
+  bool said = false;
+  for (const std::string& why : one.reasons)
+    said = said || why.find("stated for at most 1") != std::string::npos;
+  EXPECT_TRUE(said) << one.BriefReport();
+}
+
 TEST(WidthFit, OptionsAreChecked) {
   WidthFitOptions o;
   o.max_delay_s = 0.0;
