@@ -74,14 +74,13 @@ struct IdentifyOptions {
   double width_calibration_scale = 1.0;
   double width_calibration_offset_s = 0.0;
   double width_calibration_relative_sd = 0.065;
-  // The width is stated only with at most this many defective rollers: with more, the other
-  // rollers' impacts pass for the second event. Chosen on the tuning-side sets
-  // (datasets/sweeps/identify-tune.toml, identify-width.toml, identify-width-multi.toml; clean,
-  // 10 and 0 dB, everything stated): with cross_lag_half_width_s, widths of records counted as
-  // two rollers are within 15 % as often as those counted as one (11 of 12 against 24 of 30);
-  // three-roller widths were stated on one record only, too few to allow them (docs/IDENTIFY.md,
-  // "Width").
-  int width_max_count = 2;
+  // The width is stated only with at most this many defective rollers: the sets hold up to
+  // three. Chosen on the tuning-side sets (datasets/sweeps/identify-tune.toml,
+  // identify-width.toml, identify-width-multi.toml, identify-width-three.toml; clean, 10 and
+  // 0 dB, everything stated): with cross_lag_half_width_s, widths of records counted as two and
+  // three rollers are within 15 % as often as those counted as one (11 of 12 and 9 of 9, against
+  // 24 of 30; docs/IDENTIFY.md, "Width").
+  int width_max_count = 3;
   // Width reported when the second event's power is this many bootstrap standard deviations
   // above zero and the 90 % interval's half width is at most this fraction of the estimate.
   double min_delay_significance = 2.0;

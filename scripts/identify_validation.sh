@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The identification's validation on simulated records (docs/IDENTIFY.md, "Validation on
-# simulated records") in one command: generates the five sets of datasets/sweeps/identify-*.toml
+# simulated records") in one command: generates the six lumped-model sets of datasets/sweeps/identify-*.toml
 # (lumped model; `spall dataset run` resumes a folder it finds part-done), runs `spall
 # identify-check` on each at clean, 10 and 0 dB (horizontal channel, the scene's load given) and
 # prints one table of counts right / wrong / refused and widths stated / within 15 %.
@@ -8,13 +8,13 @@
 #   bash scripts/identify_validation.sh [OUT_DIR]      (default runs/identify)
 #
 # Extra `spall identify-check` options pass through SPALLKIT_CHECK_ARGS, e.g.
-# SPALLKIT_CHECK_ARGS="--width-max-count 3". About 6 min of generation and 4 min of checks on
+# SPALLKIT_CHECK_ARGS="--width-max-count 1". About 8 min of generation and 5 min of checks on
 # 2 cores. Uses build/apps/spall (SPALLKIT_SPALL overrides).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SPALL=${SPALLKIT_SPALL:-build/apps/spall}
 OUT=${1:-runs/identify}
-SETS="report report-long tune width width-multi"
+SETS="report report-long tune width width-multi width-three"
 WORKERS=$(nproc)
 mkdir -p "$OUT"
 for set in $SETS; do

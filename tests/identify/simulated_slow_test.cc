@@ -98,7 +98,7 @@ TEST(SimulatedRecords, TwoSpalledRollersGetNoWrongCount) {
   if (id.count_identifiable) {
     EXPECT_EQ(id.count, 2) << id.BriefReport();
   }
-  if (id.width_identifiable) {  // stated (width_max_count 2) only with an interval that holds it
+  if (id.width_identifiable) {  // stated only with an interval that holds the truth
     EXPECT_LE(id.width_low_m, 2.27e-3) << id.BriefReport();
     EXPECT_GE(id.width_high_m, 2.27e-3) << id.BriefReport();
   }

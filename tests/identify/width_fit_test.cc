@@ -116,14 +116,15 @@ TEST(WidthFit, WidthOfASyntheticSpall) {
 }
 
 // Two spalled rollers of one width (slots 0 and 4, spin phases 30 and 150 deg): the other
-// roller's impacts fall at lags the fit leaves out (from the count's spin phases), and the
-// width is stated with the default width_max_count (2); with 1 it is refused and says why.
+// roller's impacts correlate with this one's at a lag away from the pair's (30 vs 150 deg of spin
+// phase), and the width is stated with the default width_max_count; with 1 it is refused and
+// says why.
 TEST(WidthFit, WidthOfTwoSyntheticSpalledRollers) {
   const Record r = MakeSyntheticRecord(
       spallkit::testing::RollerRecordSpec(900, 15, {{0, 1.8, 30}, {4, 1.8, 150}}, 3));
   IdentifyOptions o = SignalModelOptions();
   o.width_max_count = IdentifyOptions().width_max_count;
-  ASSERT_EQ(o.width_max_count, 2);
+  ASSERT_GE(o.width_max_count, 2);
   const Identification id = spallkit::testing::IdentifyRecord(r, 900, 10000, o);
   ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
   ASSERT_EQ(id.count, 2) << id.BriefReport();
