@@ -78,7 +78,7 @@ struct IdentifyOptions {
   // three. Chosen on the tuning-side sets (datasets/sweeps/identify-tune.toml,
   // identify-width.toml, identify-width-multi.toml, identify-width-three.toml; clean, 10 and
   // 0 dB, everything stated): with cross_lag_half_width_s, widths of records counted as two and
-  // three rollers are within 15 % as often as those counted as one (11 of 12 and 9 of 9, against
+  // three rollers are within 15 % as often as those counted as one (14 of 15 and 9 of 9, against
   // 24 of 30; docs/IDENTIFY.md, "Width").
   int width_max_count = 3;
   // Width reported when the second event's power is this many bootstrap standard deviations
