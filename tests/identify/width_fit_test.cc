@@ -115,10 +115,9 @@ TEST(WidthFit, WidthOfASyntheticSpall) {
   EXPECT_GE(id.width_high_m, 1.8e-3);
 }
 
-// Two spalled rollers of one width (slots 0 and 4, spin phases 30 and 150 deg): the other
-// roller's impacts correlate with this one's at a lag away from the pair's (30 vs 150 deg of spin
-// phase), and the width is stated with the default width_max_count; with 1 it is refused and
-// says why.
+// Two spalled rollers of one width (slots 0 and 4, spin phases 30 and 150 deg): their impacts
+// correlate with each other's at the lag of 120 deg of spin, far from the pair's delay, and the
+// width is stated with the default width_max_count; with 1 it is refused and says why.
 TEST(WidthFit, WidthOfTwoSyntheticSpalledRollers) {
   const Record r = MakeSyntheticRecord(
       spallkit::testing::RollerRecordSpec(900, 15, {{0, 1.8, 30}, {4, 1.8, 150}}, 3));
@@ -141,6 +140,24 @@ TEST(WidthFit, WidthOfTwoSyntheticSpalledRollers) {
   for (const std::string& why : one.reasons)
     said = said || why.find("stated for at most 1") != std::string::npos;
   EXPECT_TRUE(said) << one.BriefReport();
+}
+
+// Three spalled rollers of one width (slots 0, 3, 7; spin phases 120 deg apart), stated with the
+// default width_max_count (3).
+TEST(WidthFit, WidthOfThreeSyntheticSpalledRollers) {
+  const Record r = MakeSyntheticRecord(spallkit::testing::RollerRecordSpec(
+      900, 15, {{0, 1.8, 30}, {3, 1.8, 150}, {7, 1.8, 270}}, 3));
+  IdentifyOptions o = SignalModelOptions();
+  o.width_max_count = IdentifyOptions().width_max_count;
+  ASSERT_EQ(o.width_max_count, 3);
+  const Identification id = spallkit::testing::IdentifyRecord(r, 900, 10000, o);
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  ASSERT_EQ(id.count, 3) << id.BriefReport();
+  EXPECT_EQ(id.other_rollers_lags_s.size(), 6u);
+  ASSERT_TRUE(id.width_identifiable) << id.BriefReport();
+  // Within 10 %; the intervals' coverage is a rate (WidthFit.IntervalsCoverTheTruth), not a
+  // property of one record.
+  EXPECT_NEAR(id.width_m, 1.8e-3, 0.1 * 1.8e-3);
 }
 
 TEST(WidthFit, OptionsAreChecked) {
