@@ -263,11 +263,13 @@ Identification Identify(const Record& record,
   const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
   id.width_fit = FitEntryExit(sew, fs, zone, block, wo);
   const WidthFit& wf = id.width_fit;
-  double cross_lag = -1.0;  // the other rollers' lag nearest to the delay, if within the window
+  // The other rollers' lag nearest to the delay, if it lies within the window (else -1).
+  double cross_lag = -1.0;
   for (double lag : cross_lags)
-    if (std::abs(wf.best.delay_s - lag) < options.cross_lag_half_width_s &&
-        (cross_lag < 0 || std::abs(wf.best.delay_s - lag) < std::abs(wf.best.delay_s - cross_lag)))
+    if (cross_lag < 0 || std::abs(wf.best.delay_s - lag) < std::abs(wf.best.delay_s - cross_lag))
       cross_lag = lag;
+  if (cross_lag >= 0 && !(std::abs(wf.best.delay_s - cross_lag) < options.cross_lag_half_width_s))
+    cross_lag = -1.0;
   // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
   // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
   const double release_angle =

@@ -2,6 +2,8 @@
 // for the identification tests.
 #pragma once
 
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/bearing.h"
@@ -44,6 +46,13 @@ inline identify::Identification IdentifyRecord(const Record& record,
   const dsp::Diagnosis d = dsp::Diagnose(record, g, rpm / 60.0);
   options.radial_load_n = load_n;
   return identify::Identify(record, g, rpm / 60.0, d, options);
+}
+
+// Whether one of the identification's reasons contains `text`.
+inline bool HasReason(const identify::Identification& id, std::string_view text) {
+  for (const std::string& reason : id.reasons)
+    if (reason.find(text) != std::string::npos) return true;
+  return false;
 }
 
 }  // namespace spallkit::testing

@@ -68,10 +68,8 @@ TEST(Refusals, DelayOnAnotherRollersImpactsIsNotAWidth) {
   ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
   ASSERT_EQ(id.count, 2);
   EXPECT_FALSE(id.width_identifiable) << id.BriefReport();
-  bool said = false;
-  for (const std::string& why : id.reasons)
-    said = said || why.find("another defective roller's impacts") != std::string::npos;
-  EXPECT_TRUE(said) << id.BriefReport();
+  EXPECT_TRUE(spallkit::testing::HasReason(id, "another defective roller's impacts"))
+      << id.BriefReport();
 
   o.cross_lag_half_width_s = 0.0;
   const Identification unguarded = IdentifyRecord(r, 1200, 10000, o);
@@ -94,10 +92,8 @@ TEST(Refusals, WidthBeyondTheCalibrationIsNotStated) {
   EXPECT_TRUE(beyond.count_identifiable) << beyond.BriefReport();
   EXPECT_FALSE(beyond.width_identifiable);
   EXPECT_EQ(beyond.width_m, 0.0);
-  bool said = false;
-  for (const std::string& reason : beyond.reasons)
-    said = said || reason.find("wider than the calibration covers") != std::string::npos;
-  EXPECT_TRUE(said) << beyond.BriefReport();
+  EXPECT_TRUE(spallkit::testing::HasReason(beyond, "wider than the calibration covers"))
+      << beyond.BriefReport();
   o.width_max_diameter_fraction = 1.5;
   std::string e;
   EXPECT_FALSE(o.IsValid(&e));
@@ -126,10 +122,8 @@ TEST(Refusals, ContactReleaseShiftsTheWidthAndNeedsTheLoad) {
   const Identification no_load = Identify(r, g, 15.0, dsp::Diagnose(r, g, 15.0), o);
   ASSERT_TRUE(no_load.count_identifiable) << no_load.BriefReport();
   EXPECT_FALSE(no_load.width_identifiable);
-  bool said = false;
-  for (const std::string& reason : no_load.reasons)
-    said = said || reason.find("needs the radial load") != std::string::npos;
-  EXPECT_TRUE(said) << no_load.BriefReport();
+  EXPECT_TRUE(spallkit::testing::HasReason(no_load, "needs the radial load"))
+      << no_load.BriefReport();
 }
 
 // The diagnosis itself needs 4 cage revolutions; a stricter requirement refuses the count.
