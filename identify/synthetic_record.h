@@ -9,7 +9,9 @@
 //     lower-frequency ring-down) and exit (the trailing edge strikes: the main impulse), the
 //     exit dt = chord angle / spin rate after the entry, w = d sin(pi f_s dt) (w = chord);
 //   - both scale with the roller load (Harris-Jones, identify/load_zone.h) as q(psi)^exponent,
-//     with a small floor outside the load zone; inner-race hits reach the sensor weaker;
+//     with a small floor outside the load zone; inner-race hits reach the sensor weaker; with a
+//     sensor direction, each event reaches it with cos(psi - sensor angle) (an impact along the
+//     roller's radius at orbit angle psi);
 //   - slip: cage and spin rates off the kinematic ones by fixed fractions, plus a random walk of
 //     each defective roller's spin phase once per cage revolution (it slides while unloaded) and
 //     a small jitter of every event;
@@ -17,6 +19,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "core/bearing.h"
@@ -51,8 +54,11 @@ struct SyntheticRecordSpec {
   double roller0_angle_rad = 0.0;  // roller 0 from the load line at t = 0
   std::vector<SyntheticRoller> rollers;
   std::vector<SyntheticResonance> resonances = {{3000.0, 0.05, 1.0}, {6200.0, 0.04, 0.5}};
-  double load_exponent = 0.5;       // event amplitude ~ q^load_exponent (squared envelope ~ q^(2x))
-  double unloaded_floor = 0.05;     // relative amplitude outside the load zone
+  double load_exponent = 0.5;    // event amplitude ~ q^load_exponent (squared envelope ~ q^(2x))
+  double unloaded_floor = 0.05;  // relative amplitude outside the load zone
+  // The sensor's direction from the load line (rad; pi/2: horizontal under a vertical load);
+  // unset: every event reaches the sensor whole, wherever the roller is.
+  std::optional<double> sensor_angle_rad;
   double inner_race_ratio = 0.6;    // inner-race events relative to outer-race events
   double entry_ratio = 0.35;        // entry amplitude relative to exit
   double entry_resonance_hz = 0.0;  // entry rings this (lower) resonance; 0: the exit's ones
