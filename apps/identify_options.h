@@ -1,11 +1,12 @@
 // When `spall identify` and `spall identify-check` state a count and a width
-// (IdentifyOptions::min_count_probability, width_max_count; docs/IDENTIFY.md): the defaults are
-// the calibrated ones, the options let a user be stricter or reproduce the documented
-// experiments.
+// (IdentifyOptions::min_count_probability, width_max_count) and how sure the count is
+// (CountFitOptions::temperature_cage / _sidebands; docs/IDENTIFY.md): the defaults are the
+// calibrated ones, the options let a user be stricter or reproduce the documented experiments.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "apps/cli_guard.h"
 #include "core/error.h"
@@ -18,6 +19,8 @@ struct IdentifyStatementOptions {
   int width_max_count = identify::IdentifyOptions().width_max_count;
   CLI::Option* probability_option = nullptr;
   CLI::Option* width_count_option = nullptr;
+  std::vector<double> temperatures;
+  CLI::Option* temperatures_option = nullptr;
 
   void Add(CLI::App& sub) {
     probability_option =
@@ -30,6 +33,16 @@ struct IdentifyStatementOptions {
                        width_max_count,
                        "state the width only for at most this many defective rollers (default " +
                            std::to_string(width_max_count) + ")");
+    const identify::CountFitOptions count;
+    temperatures_option =
+        sub.add_option("--temperatures",
+                       temperatures,
+                       "the count's evidence temperatures T_A,T_B (cage average, sidebands; "
+                       "default " +
+                           Number(count.temperature_cage) + "," +
+                           Number(count.temperature_sidebands) + ")")
+            ->expected(2)
+            ->delimiter(',');
   }
 
   // Throws InputError naming the option when a given value is out of range.
@@ -45,6 +58,12 @@ struct IdentifyStatementOptions {
         throw InputError("--width-max-count must be >= 1 (got " + std::to_string(width_max_count) +
                          ")");
       o->width_max_count = width_max_count;
+    }
+    if (temperatures_option && temperatures_option->count() > 0) {
+      o->count.temperature_cage = temperatures.at(0);
+      o->count.temperature_sidebands = temperatures.at(1);
+      std::string error;
+      if (!o->count.IsValid(&error)) throw InputError("--temperatures: " + error);
     }
   }
 };
