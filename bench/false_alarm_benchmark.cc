@@ -356,7 +356,7 @@ void BM_FalseAlarmSimulatedHealthyLumped(benchmark::State& state) {
   SimulatedHealthy(state, runs);
 }
 BENCHMARK(BM_FalseAlarmSimulatedHealthyLumped)->Arg(10)->Iterations(1)->Unit(benchmark::kSecond);
-// Hybrid model at 1200 rpm, 1.15 s, with the main job's friction (~75 s of simulation on one
+// Hybrid model at 1200 rpm, 1.15 s, with the main job's friction (~100 s of simulation on one
 // core).
 void BM_FalseAlarmSimulatedHealthyHybrid(benchmark::State& state) {
   SimulatedHealthy(state, {{"hybrid", 1200, 1.15, Friction::kTraction}});
