@@ -5,6 +5,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,26 +46,34 @@ struct IdentifyStatementOptions {
             ->delimiter(',');
   }
 
-  // Throws InputError naming the option when a given value is out of range.
+  // Throws InputError naming the option when a given value is out of range. The ranges are the
+  // library's (IdentifyOptions::IsValid), checked on the defaults with only this option changed,
+  // so that another option's bad value is not blamed on this one.
   void Apply(identify::IdentifyOptions* o) const {
-    if (probability_option && probability_option->count() > 0) {
-      if (!(min_count_probability > 0.0 && min_count_probability <= 1.0))
-        throw InputError("--min-count-probability must be in (0, 1] (got " +
-                         Number(min_count_probability) + ")");
-      o->min_count_probability = min_count_probability;
-    }
-    if (width_count_option && width_count_option->count() > 0) {
-      if (width_max_count < 1)
-        throw InputError("--width-max-count must be >= 1 (got " + std::to_string(width_max_count) +
-                         ")");
-      o->width_max_count = width_max_count;
-    }
-    if (temperatures_option && temperatures_option->count() > 0) {
-      o->count.temperature_cage = temperatures.at(0);
-      o->count.temperature_sidebands = temperatures.at(1);
+    auto apply = [&](const std::string& flag,
+                     const std::string& got,
+                     const std::function<void(identify::IdentifyOptions*)>& set) {
+      identify::IdentifyOptions probe;
+      set(&probe);
       std::string error;
-      if (!o->count.IsValid(&error)) throw InputError("--temperatures: " + error);
-    }
+      if (!probe.IsValid(&error)) throw InputError(flag + ": " + error + " (got " + got + ")");
+      set(o);
+    };
+    if (probability_option && probability_option->count() > 0)
+      apply("--min-count-probability", Number(min_count_probability), [&](auto* t) {
+        t->min_count_probability = min_count_probability;
+      });
+    if (width_count_option && width_count_option->count() > 0)
+      apply("--width-max-count", std::to_string(width_max_count), [&](auto* t) {
+        t->width_max_count = width_max_count;
+      });
+    if (temperatures_option && temperatures_option->count() > 0)
+      apply("--temperatures",
+            Number(temperatures.at(0)) + "," + Number(temperatures.at(1)),
+            [&](auto* t) {
+              t->count.temperature_cage = temperatures[0];
+              t->count.temperature_sidebands = temperatures[1];
+            });
   }
 };
 
