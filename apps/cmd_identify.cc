@@ -40,10 +40,7 @@ int Run(const Opts& o) {
                      spallkit::apps::Number(o.sensor_angle_deg) + ")");
   if (o.max_count != -1 && o.max_count < 1)
     throw InputError("--max-count must be >= 1 (got " + std::to_string(o.max_count) + ")");
-  const BearingGeometry g = o.input.bearing.Geometry();
-  const Record record = o.input.Read();
-
-  identify::IdentifyOptions io;
+  identify::IdentifyOptions io;  // checked before the record is read: an option error comes first
   if (o.load_option && o.load_option->count() > 0) io.radial_load_n = o.load_n;
   if (o.max_count >= 0) io.count.max_count = o.max_count;
   o.statements.Apply(&io);
@@ -51,6 +48,8 @@ int Run(const Opts& o) {
     io.count.sensor_angle_rad = o.sensor_angle_deg * kPi / 180.0;
   std::string error;
   if (!io.IsValid(&error)) throw InputError(error);
+  const BearingGeometry g = o.input.bearing.Geometry();
+  const Record record = o.input.Read();
   dsp::DiagnoseOptions dopt;
   dopt.kurtogram_map = !o.plot_dir.empty();
   const dsp::Diagnosis d = dsp::Diagnose(record, g, o.input.ShaftHz(), dopt);
