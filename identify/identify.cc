@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "core/constants.h"
@@ -263,13 +264,14 @@ Identification Identify(const Record& record,
   const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
   id.width_fit = FitEntryExit(sew, fs, zone, block, wo);
   const WidthFit& wf = id.width_fit;
-  // The other rollers' lag nearest to the delay, if it lies within the window (else -1).
-  double cross_lag = -1.0;
-  for (double lag : cross_lags)
-    if (cross_lag < 0 || std::abs(wf.best.delay_s - lag) < std::abs(wf.best.delay_s - cross_lag))
+  // The other rollers' lag nearest to the delay, if it lies within the window.
+  std::optional<double> cross_lag;
+  for (double lag : cross_lags) {
+    const double off = std::abs(wf.best.delay_s - lag);
+    if (off < options.cross_lag_half_width_s &&
+        (!cross_lag || off < std::abs(wf.best.delay_s - *cross_lag)))
       cross_lag = lag;
-  if (cross_lag >= 0 && !(std::abs(wf.best.delay_s - cross_lag) < options.cross_lag_half_width_s))
-    cross_lag = -1.0;
+  }
   // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
   // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
   const double release_angle =
@@ -285,10 +287,10 @@ Identification Identify(const Record& record,
   std::string& why = width_reason;
   if (!wf.usable) {
     why = "width: not identifiable (" + wf.message + ")";
-  } else if (cross_lag >= 0) {
+  } else if (cross_lag) {
     why = "width: not identifiable (the second event at " +
           FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms lies on another defective roller's " +
-          "impacts (" + FormatNumber("%.2f", cross_lag * 1e3) +
+          "impacts (" + FormatNumber("%.2f", *cross_lag * 1e3) +
           " ms from the spin phases): their correlation, not a release and landing)";
   } else if (wf.delay_power_significance < options.min_delay_significance) {
     why = "width: not identifiable (no entry event resolved before the impacts: significance " +

@@ -49,12 +49,14 @@ def prominence(alpha, ies, f0, tol=0.02, half=15.0):
     return ies[inside].max() / np.median(ies[around])
 
 
-def family_score(alpha, f, gamma, bands, f0):
-    """Weaker of the two harmonics' prominence: whole band, and the best band."""
-    scores = []
-    for lo, hi in bands:
-        ies = gamma[:, (f >= lo) & (f <= hi)].mean(1)
-        scores.append(min(prominence(alpha, ies, f0), prominence(alpha, ies, 2 * f0)))
+def band_ies(f, gamma, bands):
+    """The IES of each band: the coherence's mean over the band's spectral bins."""
+    return [gamma[:, (f >= lo) & (f <= hi)].mean(1) for lo, hi in bands]
+
+
+def family_score(alpha, ies_per_band, f0):
+    """Weaker of the two harmonics' prominence: whole band (the first), and the best band."""
+    scores = [min(prominence(alpha, ies, f0), prominence(alpha, ies, 2 * f0)) for ies in ies_per_band]
     return scores[0], max(scores[1:])
 
 
@@ -95,8 +97,9 @@ def main():
         bands = [(200.0, top)]
         for width in (top / 8, top / 4, top / 2):
             bands += [(lo, lo + width) for lo in np.arange(0.0, top - width + 1, width / 2)]
-        whole, best = family_score(alpha, f, gamma, bands, f0)
-        decoys = np.array([family_score(alpha, f, gamma, bands, f0 * s)[1] for s in decoy_scale])
+        ies = band_ies(f, gamma, bands)
+        whole, best = family_score(alpha, ies, f0)
+        decoys = np.array([family_score(alpha, ies, f0 * s)[1] for s in decoy_scale])
         rows.append({"record": r["file"].split("_DE")[0], "fault": fault, "family": key,
                      "whole band": round(whole, 1), "best band": round(best, 1),
                      "decoys median": round(float(np.median(decoys)), 1),
