@@ -8,6 +8,7 @@
 #include "core/constants.h"
 #include "core/error.h"
 #include "sim/bearing/rigid_outer_race.h"
+#include "sim/contact/film_lift.h"
 #include "sim/quasistatic/harris_jones.h"
 #include "sim/solver/stable_step.h"
 
@@ -84,6 +85,18 @@ RollerContacts::RollerContacts(const Scene& scene,
   pocket_half_width_ = 0.5 * (g.bearing.element_diameter_m + g.pocket_clearance_m);
   pitch_radius_ = housing.pitch_radius_m;
   k_c_ = PalmgrenContactStiffness(t, options_.palmgren_coefficient);
+  race_reach_ = kReachMargin;
+  if (scene_.friction.model == contact::TractionModel::kEhl) {
+    const double r = housing.roller_radius_m, eta = scene_.friction.ehl.inlet_viscosity_pa_s;
+    const double r_o = housing.outer_raceway_radius_m, r_i = inner_radius_;
+    film_per_speed_[0] = contact::MartinFilmCoefficient(eta, 1.0, r * r_o / (r_o - r), t);
+    film_per_speed_[1] = contact::MartinFilmCoefficient(eta, 1.0, r * r_i / (r_i + r), t);
+    // Entrainment stays below the inner race's surface speed in rolling (the roller's surface
+    // and the race's move at (omega - omega_cage) r_i relative to the contact); capping A at
+    // twice that bounds the reach.
+    film_ceiling_ = 2.0 * std::abs(omega) * r_i * std::max(film_per_speed_[0], film_per_speed_[1]);
+    race_reach_ = std::max(kReachMargin, contact::FilmReach(film_ceiling_, k_c_));
+  }
 
   // Rollers: exact profiles, mass properties, initial pose (centred, pitch circle).
   const double rho_r = scene_.materials.roller.density_kg_m3;
@@ -189,6 +202,7 @@ RollerContacts::RollerContacts(const Scene& scene,
   friction_.assign(kFrictionSlots * z, 0.0);
   anchor_depth_.assign(3 * kFrictionSlots * z, 0.0);
   anchor_power_.assign(3 * kFrictionSlots * z, 0.0);
+  film_coefficient_.assign(3 * kFrictionSlots * z, 0.0);
   outer_force_.assign(z, 0.0);
   inner_force_.assign(z, 0.0);
   cage_force_.assign(z, 0.0);
@@ -399,62 +413,91 @@ double RollerContacts::Contact(
   // (RaceContacts): V = V(d_1) + V(d_2) - V(d_s), d_s = d_1 + d_2 - d_c the shared zone's
   // depth, whose forces are Q(d_k) - Q(d_s) at the edges and Q(d_s) at the circle's point.
   double qe_pt[3] = {0, 0, 0}, kn_pt[3] = {0, 0, 0};
-  // Palmgren's law at penetration d > 0: load, stiffness dQ/dd and potential 9/19 Q d.
-  const int anchor = 3 * static_cast<int>(spring - friction_.data());
-  auto palmgren_law = [&](double d, int point, double* load, double* stiffness) {
-    *load = scale * k_c_ * PalmgrenPower(d, anchor + point);
-    *stiffness = 10.0 / 9.0 * *load / d;
-    return *load * d * (9.0 / 19.0);
+  // The conservative part of each point's elastic load (the rest is the lubricant film's, whose
+  // work is booked with the damping; without a film, all of it).
+  double qc_pt[3] = {0, 0, 0};
+  double tx = -pts[0].ny, ty = pts[0].nx;
+  // Each point's relative velocity (roller minus counter body) and entrainment speed, from the
+  // velocity of the roller's circle centre (the contact points move with it).
+  const double centre_vx = b.vx - b.omega * (centre_y_[j] - b.y);
+  const double centre_vy = b.vy + b.omega * (centre_x_[j] - b.x);
+  double rvx[3], rvy[3], ue[3];  // ue: twice the entrainment speed
+  for (int k = 0; k < npts; ++k) {
+    const RacePoint& p = pts[k];
+    double vx, vy;
+    CounterVelocity(body, p.px, p.py, &vx, &vy);
+    rvx[k] = b.vx - b.omega * (p.py - b.y) - vx;
+    rvy[k] = b.vy + b.omega * (p.px - b.x) - vy;
+    const double u_roller = b.omega * ((p.px - centre_x_[j]) * ty - (p.py - centre_y_[j]) * tx);
+    const double u_counter = (vx - centre_vx) * tx + (vy - centre_vy) * ty;
+    ue[k] = u_roller + u_counter;  // twice the entrainment speed
+  }
+  // The lubricant film's coefficient A of point k (contact/film_lift.h), 0 without a film.
+  const double film_per_speed = palmgren && counter < 2 ? film_per_speed_[counter] : 0.0;
+  auto film = [&](int k) {
+    return std::min(film_ceiling_, film_per_speed * std::abs(0.5 * ue[k])) * scale;
   };
+  // Palmgren's law at penetration d > 0 (load, stiffness dQ/dd and potential 9/19 Q d), or with
+  // the film at any d (point's A > 0).
+  const int anchor = 3 * static_cast<int>(spring - friction_.data());
+  auto race_law =
+      [&](double d, int point, double a, double* load, double* stiffness, double* conservative) {
+        double& a_last = film_coefficient_[anchor + point];
+        if (a > 0 || a_last > 0) {
+          const contact::FilmContactLoad f = contact::FilmLineContact(d, a, scale * k_c_);
+          *load = f.load, *stiffness = f.stiffness, *conservative = f.conservative_load;
+          // The elastic energy that the change of A since the last step moved without work (first
+          // order in the change; the shared zone's potential is subtracted): the film's, booked
+          // with the damping so that the balance keeps only the integration's error.
+          damping_work_ -= (point == 2 ? -1.0 : 1.0) * f.potential_per_film * (a - a_last);
+          a_last = a;
+          return f.potential;
+        }
+        if (!(d > 0)) return *load = *stiffness = *conservative = 0.0;
+        *load = *conservative = scale * k_c_ * PalmgrenPower(d, anchor + point);
+        *stiffness = 10.0 / 9.0 * *load / d;
+        return *load * d * (9.0 / 19.0);
+      };
   for (int k = 0; k < std::min(npts, 2); ++k) {
     const double d = pts[k].delta;
-    if (!(d > 0)) continue;
     if (palmgren) {
-      step_potential_ += palmgren_law(d, k, &qe_pt[k], &kn_pt[k]);
-    } else {
+      step_potential_ += race_law(d, k, film(k), &qe_pt[k], &kn_pt[k], &qc_pt[k]);
+    } else if (d > 0) {
       kn_pt[k] = options_.cage_stiffness_n_per_m;
-      qe_pt[k] = kn_pt[k] * d;
+      qe_pt[k] = qc_pt[k] = kn_pt[k] * d;
       step_potential_ += 0.5 * qe_pt[k] * d;
     }
   }
   if (npts == 3) {
     const double shared = pts[0].delta + pts[1].delta - pts[2].delta;
-    if (palmgren && shared > 0) {
-      double qs, ks;
-      step_potential_ -= palmgren_law(shared, 2, &qs, &ks);
+    const double a = film(2);
+    if (palmgren && (shared > 0 || a > 0)) {
+      double qs, ks, cs;
+      step_potential_ -= race_law(shared, 2, a, &qs, &ks, &cs);
       for (int k = 0; k < 2; ++k) {
         qe_pt[k] = std::max(0.0, qe_pt[k] - qs);
         kn_pt[k] = std::max(0.0, kn_pt[k] - ks);
+        qc_pt[k] = std::max(0.0, qc_pt[k] - cs);
       }
-      qe_pt[2] = qs, kn_pt[2] = ks;
+      qe_pt[2] = qs, kn_pt[2] = ks, qc_pt[2] = cs;
     }
   }
   double q[3] = {0, 0, 0}, q_total = 0, kn_total = 0, vt_acc = 0, ue_acc = 0;
-  double tx = -pts[0].ny, ty = pts[0].nx;
-  // Velocity of the roller's circle centre (the contact points move with it): the surfaces'
-  // speeds relative to the contact give the lubricant's entrainment speed.
-  const double centre_vx = b.vx - b.omega * (centre_y_[j] - b.y);
-  const double centre_vy = b.vy + b.omega * (centre_x_[j] - b.x);
   for (int k = 0; k < npts; ++k) {
     const RacePoint& p = pts[k];
     if (!(qe_pt[k] > 0)) continue;
     const double qe = qe_pt[k], kn = kn_pt[k];
-    double vx, vy;
-    CounterVelocity(body, p.px, p.py, &vx, &vy);
-    const double rvx = b.vx - b.omega * (p.py - b.y) - vx;
-    const double rvy = b.vy + b.omega * (p.px - b.x) - vy;
-    const double rate = -(rvx * p.nx + rvy * p.ny);  // d delta / dt
+    const double rate = -(rvx[k] * p.nx + rvy[k] * p.ny);  // d delta / dt
     const double c = 2.0 * zeta * std::sqrt(kn * m);
     q[k] = std::max(0.0, qe + c * rate);
-    // Damping work, first half (v^(n-1/2)); the second half in FinishDissipation.
-    damping_work_ += (q[k] - qe) * rate * half;
-    Defer(p, (q[k] - qe) * p.nx, (q[k] - qe) * p.ny, 0);
+    // Damping and film work, first half (v^(n-1/2)); the second half in FinishDissipation.
+    const double dissipative = q[k] - qc_pt[k];
+    damping_work_ += dissipative * rate * half;
+    Defer(p, dissipative * p.nx, dissipative * p.ny, 0);
     q_total += q[k];
     kn_total += kn;
-    vt_acc += q[k] * (rvx * tx + rvy * ty);
-    const double u_roller = b.omega * ((p.px - centre_x_[j]) * ty - (p.py - centre_y_[j]) * tx);
-    const double u_counter = (vx - centre_vx) * tx + (vy - centre_vy) * ty;
-    ue_acc += q[k] * 0.5 * (u_roller + u_counter);
+    vt_acc += q[k] * (rvx[k] * tx + rvy[k] * ty);
+    ue_acc += q[k] * 0.5 * ue[k];
   }
   if (!(q_total > 0)) {
     *spring = 0.0;
@@ -571,7 +614,7 @@ void RollerContacts::RaceContacts(
   // (by more than rounding) has no contact, and its stick spring is released as in Contact.
   const double rho = prof.edge_radius;
   const double cx = centre_x_[j], cy = centre_y_[j];
-  if (WithRace([&](auto& race) { return race.MayTouch(cx, cy, prof.radius + kReachMargin); })) {
+  if (WithRace([&](auto& race) { return race.MayTouch(cx, cy, prof.radius + race_reach_); })) {
     int n = RacePoints(j, 0, prof, dirs, pts);
     double qx[2], qy[2], rad[2];
     if (n == 1) {
@@ -593,7 +636,7 @@ void RollerContacts::RaceContacts(
   }
   // Inner race (rigid ring on the shaft).
   const double sx = shaft_.x - cx, sy = shaft_.y - cy;
-  if (inner_radius_ - std::sqrt(sx * sx + sy * sy) + prof.radius < -kReachMargin) {
+  if (inner_radius_ - std::sqrt(sx * sx + sy * sy) + prof.radius < -race_reach_) {
     friction_[slot + 1] = 0.0;
     return;
   }
@@ -792,7 +835,7 @@ std::string RollerContacts::SaveState() const {
 
 void RollerContacts::LoadState(const std::string& bytes) {
   const size_t z = rollers_.size();
-  const size_t n = 6 * (z + 2) + 7 * kFrictionSlots * z + 5 * z + 8;
+  const size_t n = 6 * (z + 2) + 10 * kFrictionSlots * z + 5 * z + 8;
   if (bytes.size() < n * sizeof(double))
     throw InputError("roller contacts: checkpoint state has the wrong size");
   CheckpointReader in(bytes, "roller contacts: checkpoint state");

@@ -241,7 +241,8 @@ class RollerContacts {
                       &self.cos_,
                       &self.sin_,
                       &self.anchor_depth_,
-                      &self.anchor_power_};
+                      &self.anchor_power_,
+                      &self.film_coefficient_};
   }
   double Kept(double energy) const {
     return options_.energy_books ? energy : std::numeric_limits<double>::quiet_NaN();
@@ -290,6 +291,12 @@ class RollerContacts {
   double cage_mass_ = 0, cage_inertia_ = 0, shaft_mass_ = 0, race_mass_ = 0;
   double pocket_half_width_ = 0, pitch_radius_ = 0, inner_radius_ = 0;
   double k_c_ = 0, dt_limit_ = 0, roller_dt_ = 0, ring_dt_ = 0, bound_normal_stiffness_ = 0;
+  // The lubricant film's normal load (contact/film_lift.h; lubricated race contacts only):
+  // 4.9 eta L R per unit entrainment speed, per Counter (outer race, inner race; 0: no film),
+  // its ceiling (A at twice the inner race's surface speed), and the race contacts' reach (the
+  // gap beyond which they carry nothing).
+  double film_per_speed_[2] = {0, 0};
+  double film_ceiling_ = 0, race_reach_ = 0;
   std::vector<double> reduced_mass_, reduced_mass_t_;  // per (roller, Counter)
   double inverse_counter_mass_[3] = {0, 0, 0};         // per Counter, for a tangential force
   std::vector<double> inverse_roller_mass_, inverse_roller_inertia_;
@@ -302,6 +309,9 @@ class RollerContacts {
                                   // race contact's last traction secant per newton (SolveTraction)
   // PalmgrenPowerNear's expansion points per contact point: depth d0 and d0^(10/9) exactly.
   std::vector<double> anchor_depth_, anchor_power_;
+  // The lubricant film's coefficient A per contact point at its last evaluation: the elastic
+  // energy that a change of A moves is booked with the film's work.
+  std::vector<double> film_coefficient_;
   std::vector<double> outer_force_, inner_force_, cage_force_;
   double dt_prev_ = 0, potential_ = 0, kinetic_ = 0, friction_work_ = 0, damping_work_ = 0,
          external_work_ = 0;

@@ -429,6 +429,7 @@ void ReadFriction(Section s, SceneFriction* f) {
     s.Fail("model", "expected \"coulomb\" or \"ehl\" (got \"" + model + "\")");
   f->ehl.limiting_coefficient = s.Number("ehl_limit", 0.08, {0.0, 1.0, true, true});
   f->ehl.slide_roll_scale = s.Number("ehl_slide_roll", 0.01, {0.0, 1.0, true, false});
+  f->ehl.inlet_viscosity_pa_s = s.Number("ehl_viscosity_pa_s", 0.05, {0.0, 10.0});
   s.RejectUnknown();
   if (f->mu_dynamic > f->mu_static) s.Fail("mu_dynamic", "must not exceed mu_static");
 }

@@ -223,6 +223,8 @@ bool EhlTraction::IsValid(std::string* error) const {
     os << "EHL limiting traction coefficient must be in (0, 1), got " << limiting_coefficient;
   } else if (!(slide_roll_scale > 0.0) || !std::isfinite(slide_roll_scale)) {
     os << "EHL slide-to-roll scale s_0 must be finite and > 0, got " << slide_roll_scale;
+  } else if (!(inlet_viscosity_pa_s >= 0.0) || !std::isfinite(inlet_viscosity_pa_s)) {
+    os << "EHL inlet viscosity must be finite and >= 0, got " << inlet_viscosity_pa_s;
   } else {
     return true;
   }

@@ -32,6 +32,10 @@ bool ParseTractionModel(const std::string& name, TractionModel* model);
 struct EhlTraction {
   double limiting_coefficient = 0.08;  // Lambda = tau_L / p, in (0, 1)
   double slide_roll_scale = 0.01;      // s_0 > 0: mu reaches 63 % of Lambda at s = s_0
+  // eta_0 >= 0 (Pa s): the lubricant's viscosity at the contact inlet, for the film's normal
+  // load (film_lift.h); 0: the contacts' load is Palmgren's alone. 0.05: an ISO VG 68 mineral
+  // oil near 45 C.
+  double inlet_viscosity_pa_s = 0.05;
 
   // mu(s) for slide-to-roll ratio s (the sign is ignored).
   double Coefficient(double slide_to_roll) const;

@@ -176,12 +176,14 @@ TEST(EhlTractionTest, SceneSelectsItForTheRigidRollerModelsOnly) {
   EXPECT_EQ(coulomb.friction.model, contact::TractionModel::kCoulomb);
   const Scene ehl = ParseScene(
       "[model]\nfidelity = \"hybrid\"\n[friction]\nmodel = \"ehl\"\n"
-      "ehl_limit = 0.06\nehl_slide_roll = 0.02\n",
+      "ehl_limit = 0.06\nehl_slide_roll = 0.02\nehl_viscosity_pa_s = 0.1\n",
       "s.toml",
       {});
   EXPECT_EQ(ehl.friction.model, contact::TractionModel::kEhl);
   EXPECT_DOUBLE_EQ(ehl.friction.ehl.limiting_coefficient, 0.06);
   EXPECT_DOUBLE_EQ(ehl.friction.ehl.slide_roll_scale, 0.02);
+  EXPECT_DOUBLE_EQ(ehl.friction.ehl.inlet_viscosity_pa_s, 0.1);
+  EXPECT_DOUBLE_EQ(coulomb.friction.ehl.inlet_viscosity_pa_s, 0.05);  // the default
   EXPECT_NE(ehl.effective_toml.find("ehl_limit"), std::string::npos);
   auto error_of = [](const std::string& text) {
     try {
@@ -202,6 +204,12 @@ TEST(EhlTractionTest, SceneSelectsItForTheRigidRollerModelsOnly) {
   EXPECT_NE(error_of("[model]\nfidelity = \"lumped\"\n[friction]\nmodel = \"ehl\"\nehl_limit = 0\n")
                 .find("friction.ehl_limit"),
             std::string::npos);
+  EXPECT_NE(error_of("[friction]\nmodel = \"ehl\"\nehl_viscosity_pa_s = -0.01\n")
+                .find("friction.ehl_viscosity_pa_s"),
+            std::string::npos);
+  std::string error;
+  EXPECT_FALSE((EhlTraction{.inlet_viscosity_pa_s = -1}).IsValid(&error));
+  EXPECT_NE(error.find("viscosity"), std::string::npos);
 }
 
 // Roller 0's sliding from 12 ms of a 35 ms hybrid run (2 mm housing mesh) of the default scene
