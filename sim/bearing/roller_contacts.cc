@@ -8,7 +8,6 @@
 #include "core/constants.h"
 #include "core/error.h"
 #include "sim/bearing/rigid_outer_race.h"
-#include "sim/contact/film_lift.h"
 #include "sim/quasistatic/harris_jones.h"
 #include "sim/solver/stable_step.h"
 
@@ -203,6 +202,7 @@ RollerContacts::RollerContacts(const Scene& scene,
   anchor_depth_.assign(3 * kFrictionSlots * z, 0.0);
   anchor_power_.assign(3 * kFrictionSlots * z, 0.0);
   film_coefficient_.assign(3 * kFrictionSlots * z, 0.0);
+  film_memory_.assign(3 * kFrictionSlots * z, {});
   outer_force_.assign(z, 0.0);
   inner_force_.assign(z, 0.0);
   cage_force_.assign(z, 0.0);
@@ -444,7 +444,8 @@ double RollerContacts::Contact(
       [&](double d, int point, double a, double* load, double* stiffness, double* conservative) {
         double& a_last = film_coefficient_[anchor + point];
         if (a > 0 || a_last > 0) {
-          const contact::FilmContactLoad f = contact::FilmLineContact(d, a, scale * k_c_);
+          const contact::FilmContactLoad f =
+              contact::FilmLineContact(d, a, scale * k_c_, &film_memory_[anchor + point]);
           *load = f.load, *stiffness = f.stiffness, *conservative = f.conservative_load;
           // The elastic energy that the change of A since the last step moved without work (first
           // order in the change; the shared zone's potential is subtracted): the film's, booked
@@ -830,6 +831,7 @@ std::string RollerContacts::SaveState() const {
                    centred_kinetic_})
     out.Put(x);
   out.PutVector(pending_);
+  out.PutVector(film_memory_);
   return out.Take();
 }
 
@@ -860,6 +862,7 @@ void RollerContacts::LoadState(const std::string& bytes) {
   for (const DissipativeForce& d : pending_)
     if (d.roller < 0 || d.roller >= static_cast<int>(z) || d.counter < 0 || d.counter > 2)
       throw InputError("roller contacts: checkpoint state has a bad pending contact force");
+  in.GetVectorInto(&film_memory_, "roller contacts: film law memory");
   if (!in.AtEnd()) throw InputError("roller contacts: checkpoint state has the wrong size");
 }
 

@@ -56,6 +56,7 @@
 #include "sim/bearing/rigid_body.h"
 #include "sim/bearing/roller_profile.h"
 #include "sim/bearing/scene.h"
+#include "sim/contact/film_lift.h"
 #include "sim/contact/friction.h"
 #include "sim/contact/traction.h"
 #include "sim/solver/explicit_solver.h"
@@ -312,6 +313,8 @@ class RollerContacts {
   // The lubricant film's coefficient A per contact point at its last evaluation: the elastic
   // energy that a change of A moves is booked with the film's work.
   std::vector<double> film_coefficient_;
+  // The film law's memory per contact point (its last root and expansion points).
+  std::vector<contact::FilmContactMemory> film_memory_;
   std::vector<double> outer_force_, inner_force_, cage_force_;
   double dt_prev_ = 0, potential_ = 0, kinetic_ = 0, friction_work_ = 0, damping_work_ = 0,
          external_work_ = 0;

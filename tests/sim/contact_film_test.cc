@@ -3,7 +3,10 @@
 // consistency (stiffness = dQ/d delta, conservative load = dV/d delta, no jump anywhere).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <random>
 
 #include "sim/contact/film_lift.h"
 #include "sim/quasistatic/harris_jones.h"
@@ -85,6 +88,36 @@ TEST(FilmLiftTest, LoadIsSmoothAndItsStiffnessAndPotentialAreConsistent) {
   }
   EXPECT_EQ(FilmLineContact(-FilmReach(A(), K()), A(), K()).load, 0.0);
   EXPECT_GT(FilmLineContact(-0.99 * FilmReach(A(), K()), A(), K()).load, 0.0);
+}
+
+// A contact point's memory (the last root and the powers' expansion points) changes nothing but
+// rounding along a history like a contact's: slow drifts of the approach and the entrainment
+// (a loaded roller), jumps (a spall edge, the load zone's edges) and rattles across the gap.
+TEST(FilmLiftTest, MemoryOfTheLastStepChangesNothingButRounding) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> step(0.0, 1.0);
+  FilmContactMemory memory;
+  double x = 5.0, a = A(), worst = 0.0;
+  for (int i = 0; i < 200000; ++i) {
+    const double size = i % 10000 == 0 ? 20.0 : (i % 50 == 0 ? 2.0 : 0.01);
+    x = std::clamp(x + size * step(rng), -2.0 * kFilmTaperStart - 5.0, 500.0);
+    a = std::clamp(a * std::exp(1e-3 * step(rng)), 0.2 * A(), 5.0 * A());
+    const double d = x * std::pow(a / K(), 9.0 / 19.0);
+    const FilmContactLoad exact = FilmLineContact(d, a, K());
+    const FilmContactLoad near = FilmLineContact(d, a, K(), &memory);
+    auto rel = [](double u, double v) { return std::abs(u - v) / std::max(std::abs(v), 1e-300); };
+    if (exact.load == 0.0) {
+      ASSERT_EQ(near.load, 0.0) << i;
+      continue;
+    }
+    worst = std::max({worst,
+                      rel(near.load, exact.load),
+                      rel(near.stiffness, exact.stiffness),
+                      rel(near.conservative_load, exact.conservative_load),
+                      rel(near.potential, exact.potential)});
+  }
+  std::printf("largest relative difference %.2g\n", worst);
+  EXPECT_LT(worst, 1e-9);
 }
 
 TEST(FilmLiftTest, WithoutAFilmItIsPalmgrensLawAlone) {
