@@ -104,7 +104,8 @@ TEST(HybridDiagnoseTest, DiagnoseFindsTheRollerSpallAtThePapersSpeed) {
 // outweighing its f_b harmonics.) Where the record's strongest cage comb (the spall's load-zone
 // modulation) does outweigh its roller comb, the comb is given to the cage, which a 1 s record
 // cannot claim: "healthy" with the warning, never another fault. Measured: rolling_element in
-// 11 of the 12 cuts (the untrimmed vertical one is that case). Both channels, about 3 s.
+// 11 of the 12 cuts (the horizontal one trimmed by 2 ms is that case; which cuts move with any
+// change at round-off). Both channels, about 3 s.
 TEST(LumpedDiagnoseTest, OneSecondRecordIsTheRollerSpallWhereverItStarts) {
   namespace sim = spallkit::sim;
   namespace dsp = spallkit::dsp;
