@@ -141,7 +141,7 @@ TEST(PaperStudyTest, DepthChangesLittleAndMoreDefectiveRollersShakeMore) {
 // loose from t = 0 and never spun up): the defective roller rolls through every passage, and the
 // widest spall shakes the bearing most and slides the cage more, on the mean of the three starts
 // (one 50 ms run's cage sliding ratio moves by +-25 % with its start; docs/PAPER.md, "Through-
-// length spalls with lubricant traction"; measured: vibration x4.9, cage sliding ratio x1.35).
+// length spalls with lubricant traction"; measured: vibration x3.6, cage sliding ratio x1.86).
 TEST(PaperStudyTest, EhlTractionRollsThroughLengthSpallsAndWiderSpallsShakeMore) {
   double accel[2] = {0, 0}, slip[2] = {0, 0};
   const char* scenes[2] = {"width-0.46", "width-2.27"};
