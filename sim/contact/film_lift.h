@@ -48,7 +48,7 @@ struct FilmContactLoad {
 };
 
 // What a contact point keeps from one evaluation to the next (all zero at first), so that the
-// next one starts near the last: the root y of the last solve (Newton's start) and the expansion
+// next one starts near the last: the root y of the last solve (Halley's start) and the expansion
 // points of the three powers, each evaluated by a quartic Taylor expansion while its argument
 // stays within 0.5 % of the point (a few 1e-12 relative), by std::pow otherwise. A contact's
 // approach and entrainment move little per step, so most evaluations need no std::pow at all.
