@@ -10,7 +10,7 @@
 // with the model, so a resumed run takes the same branches).
 #pragma once
 
-#include <cmath>
+#include "sim/contact/near_power.h"
 
 namespace spallkit::sim {
 
@@ -19,15 +19,7 @@ inline constexpr double kPalmgrenSpan = 1e-2;
 // d^(10/9) for d > 0; *d0, *p0: the expansion point and d0^(10/9), updated when d is out of
 // reach (start with *d0 = 0).
 inline double PalmgrenPowerNear(double d, double* d0, double* p0) {
-  constexpr double p = 10.0 / 9.0, c2 = p * (p - 1.0) / 2.0, c3 = c2 * (p - 2.0) / 3.0,
-                   c4 = c3 * (p - 3.0) / 4.0;
-  const double r = d / *d0 - 1.0;  // *d0 = 0: infinite
-  if (!(std::abs(r) <= kPalmgrenSpan)) {
-    *d0 = d;
-    *p0 = std::pow(d, p);
-    return *p0;
-  }
-  return *p0 * (1.0 + r * (p + r * (c2 + r * (c3 + r * c4))));
+  return contact::NearPower<10, 9>(d, kPalmgrenSpan, d0, p0);
 }
 
 }  // namespace spallkit::sim

@@ -422,7 +422,7 @@ double RollerContacts::Contact(
   const double centre_vx = b.vx - b.omega * (centre_y_[j] - b.y);
   const double centre_vy = b.vy + b.omega * (centre_x_[j] - b.x);
   double rvx[3], rvy[3], ue[3];  // ue: twice the entrainment speed
-  for (int k = 0; k < npts; ++k) {
+  auto point_velocity = [&](int k) {
     const RacePoint& p = pts[k];
     double vx, vy;
     CounterVelocity(body, p.px, p.py, &vx, &vy);
@@ -430,11 +430,16 @@ double RollerContacts::Contact(
     rvy[k] = b.vy + b.omega * (p.px - b.x) - vy;
     const double u_roller = b.omega * ((p.px - centre_x_[j]) * ty - (p.py - centre_y_[j]) * tx);
     const double u_counter = (vx - centre_vx) * tx + (vy - centre_vy) * ty;
-    ue[k] = u_roller + u_counter;  // twice the entrainment speed
-  }
-  // The lubricant film's coefficient A of point k (contact/film_lift.h), 0 without a film.
+    ue[k] = u_roller + u_counter;
+  };
+  // The lubricant film's coefficient A of point k (contact/film_lift.h), 0 without a film. The
+  // film needs every point's entrainment before its load; without one a point's velocity is read
+  // only where it carries load (the outer race's velocity is a kernel sum in the hybrid).
   const double film_per_speed = palmgren && counter < 2 ? film_per_speed_[counter] : 0.0;
+  if (film_per_speed > 0)
+    for (int k = 0; k < npts; ++k) point_velocity(k);
   auto film = [&](int k) {
+    if (!(film_per_speed > 0)) return 0.0;
     return std::min(film_ceiling_, film_per_speed * std::abs(0.5 * ue[k])) * scale;
   };
   // Palmgren's law at penetration d > 0 (load, stiffness dQ/dd and potential 9/19 Q d), or with
@@ -487,6 +492,7 @@ double RollerContacts::Contact(
   for (int k = 0; k < npts; ++k) {
     const RacePoint& p = pts[k];
     if (!(qe_pt[k] > 0)) continue;
+    if (!(film_per_speed > 0)) point_velocity(k);
     const double qe = qe_pt[k], kn = kn_pt[k];
     const double rate = -(rvx[k] * p.nx + rvy[k] * p.ny);  // d delta / dt
     const double c = 2.0 * zeta * std::sqrt(kn * m);

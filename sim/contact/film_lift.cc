@@ -3,28 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/contact/near_power.h"
+
 namespace spallkit::sim::contact {
 
 namespace {
 
 constexpr double kPalmgrenExponent = 10.0 / 9.0;
 constexpr double kNearSpan = 5e-3;  // FilmContactMemory's expansions: |x / x0 - 1| <= this
-
-// x^(N/D) by a quartic Taylor expansion about *x0 (value *p0) while x is within kNearSpan of
-// it, else std::pow, which becomes the new expansion point. No memory: std::pow.
-template <int N, int D>
-double NearPower(double x, double* x0, double* p0) {
-  constexpr double p = static_cast<double>(N) / D, c2 = p * (p - 1.0) / 2.0,
-                   c3 = c2 * (p - 2.0) / 3.0, c4 = c3 * (p - 3.0) / 4.0;
-  if (!x0) return std::pow(x, p);
-  const double r = x / *x0 - 1.0;  // *x0 = 0: infinite
-  if (!(std::abs(r) <= kNearSpan)) {
-    *x0 = x;
-    *p0 = std::pow(x, p);
-    return *p0;
-  }
-  return *p0 * (1.0 + r * (p + r * (c2 + r * (c3 + r * c4))));
-}
 
 // A point left of the root of F below (F(start) <= 0).
 double LeftStart(double x) {
@@ -45,7 +31,7 @@ double ElasticApproach(double x, double* slope, FilmContactMemory* m) {
   const bool warm = m && m->root > 0.0;
   double y = warm ? m->root : LeftStart(x);
   for (int it = 0; it < 100; ++it) {
-    const double ym = NearPower<-10, 9>(y, y0, p0);
+    const double ym = NearPower<-10, 9>(y, kNearSpan, y0, p0);
     const double inv_y = 1.0 / y;
     const double f = y - ym - x;
     const double fp = 1.0 + kPalmgrenExponent * ym * inv_y;
@@ -92,7 +78,8 @@ FilmContactLoad FilmLineContact(double approach,
   if (!(film_coefficient > 0.0)) {  // Palmgren's law alone
     if (memory) memory->root = 0.0;
     if (!(approach > 0.0)) return out;
-    out.load = out.conservative_load = palmgren_k * NearPower<10, 9>(approach, e0, e0_power);
+    out.load = out.conservative_load =
+        palmgren_k * NearPower<10, 9>(approach, kNearSpan, e0, e0_power);
     out.stiffness = kPalmgrenExponent * out.load / approach;
     out.potential = out.load * approach * (9.0 / 19.0);
     out.potential_per_film = 1.0;
@@ -100,6 +87,7 @@ FilmContactLoad FilmLineContact(double approach,
   }
   // delta_s = (A / K)^(9/19): the approach where film and elastic approach are equal.
   const double scale = NearPower<9, 19>(film_coefficient / palmgren_k,
+                                        kNearSpan,
                                         memory ? &memory->ratio0 : nullptr,
                                         memory ? &memory->scale0 : nullptr);
   const double x = approach / scale;
@@ -110,7 +98,7 @@ FilmContactLoad FilmLineContact(double approach,
   double slope;  // d(delta) / d(delta_P)
   const double y = ElasticApproach(x, &slope, memory);
   const double elastic = y * scale;
-  const double load = palmgren_k * NearPower<10, 9>(elastic, e0, e0_power);
+  const double load = palmgren_k * NearPower<10, 9>(elastic, kNearSpan, e0, e0_power);
   const double stiffness = kPalmgrenExponent * load / elastic / slope;
   out.conservative_load = load / slope;
   out.potential = load * elastic * (9.0 / 19.0);
