@@ -17,6 +17,61 @@
 #include "sim/quasistatic/harris_jones.h"
 
 namespace spallkit::identify {
+namespace {
+
+// The samples (rate fs, from the record's first one) whose cage phase lies in the load zone of
+// the fitted humps: the model above 0.3 of its range. With exclusive_ratio > 0 and several humps,
+// only where one roller's hump is above 0.3 of its own peak and the others' together are below
+// exclusive_ratio of it, both at the sample and `lookahead` samples later (the longest lag the
+// autocorrelation pairs it with).
+std::vector<char> LoadZoneSamples(const HumpFit& fit,
+                                  const CageAverage& average,
+                                  int z,
+                                  double cage_hz,
+                                  double fs,
+                                  size_t samples,
+                                  double exclusive_ratio,
+                                  int lookahead) {
+  const int bins = static_cast<int>(fit.model.size());
+  std::vector<char> bin_in(bins, 0);
+  const auto [lo, hi] = std::minmax_element(fit.model.begin(), fit.model.end());
+  const double level = *lo + 0.3 * (*hi - *lo);
+  const bool exclusive = exclusive_ratio > 0 && fit.slots.size() > 1;
+  if (!exclusive) {
+    for (int b = 0; b < bins; ++b) bin_in[b] = fit.model[b] > level;
+  } else {
+    const size_t k_count = fit.slots.size();
+    std::vector<std::vector<double>> hump(k_count, std::vector<double>(bins));
+    const double bin_rad = 2.0 * kPi / bins;
+    for (size_t k = 0; k < k_count; ++k)
+      for (int b = 0; b < bins; ++b)
+        hump[k][b] =
+            fit.amplitudes[k] *
+            SmoothedHump(average.BinCenterRad(b) + 2.0 * kPi * fit.slots[k] / z - fit.theta0_rad,
+                         fit.shape,
+                         bin_rad);
+    for (size_t k = 0; k < k_count; ++k) {
+      const double peak = *std::max_element(hump[k].begin(), hump[k].end());
+      for (int b = 0; b < bins; ++b) {
+        double others = 0.0;
+        for (size_t j = 0; j < k_count; ++j)
+          if (j != k) others += hump[j][b];
+        if (hump[k][b] > 0.3 * peak && others <= exclusive_ratio * hump[k][b]) bin_in[b] = 1;
+      }
+    }
+  }
+  auto bin_of = [&](size_t i) {
+    double turns = i / fs * cage_hz;
+    turns -= std::floor(turns);
+    return std::min(bins - 1, static_cast<int>(turns * bins));
+  };
+  std::vector<char> zone(samples);
+  for (size_t i = 0; i < samples; ++i)
+    zone[i] = bin_in[bin_of(i)] && (!exclusive || bin_in[bin_of(i + lookahead)]);
+  return zone;
+}
+
+}  // namespace
 
 bool IdentifyOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) {
@@ -47,6 +102,9 @@ bool IdentifyOptions::IsValid(std::string* error) const {
   if (!(max_width_relative_half_interval > 0))
     return fail("identify: max_width_relative_half_interval must be > 0");
   if (!(cross_lag_half_width_s >= 0)) return fail("identify: cross_lag_half_width_s must be >= 0");
+  if (!(width_exclusive_ratio >= 0)) return fail("identify: width_exclusive_ratio must be >= 0");
+  if (!(width_exclusive_min_pair_power_ratio >= 0))
+    return fail("identify: width_exclusive_min_pair_power_ratio must be >= 0");
   if (!(width_max_diameter_fraction > 0 && width_max_diameter_fraction <= 1))
     return fail("identify: width_max_diameter_fraction must be in (0, 1]");
   return count.IsValid(error) && width.IsValid(error);
@@ -59,6 +117,7 @@ IdentifyOptions SignalModelOptions() {
   o.count.min_relative_amplitude = 0.1;
   o.width_contact_release = false;
   o.min_pair_power_ratio = 0.0;
+  o.width_exclusive_min_pair_power_ratio = 0.0;
   o.width_calibration_relative_sd = 0.0;
   o.width_max_count = 1 << 20;
   o.width_max_diameter_fraction = 0.8;
@@ -195,19 +254,6 @@ Identification Identify(const Record& record,
   id.width_band_high_hz = std::min(0.49 * fs, c + w);
   const std::vector<double> sew =
       SmoothBandSquaredEnvelope(record.samples, fs, id.width_band_low_hz, id.width_band_high_hz);
-  std::vector<char> zone;
-  if (id.count_identifiable) {  // the load zone of the fitted humps
-    const HumpFit& best = id.count_fit.best[id.count];
-    const auto [lo, hi] = std::minmax_element(best.model.begin(), best.model.end());
-    const double level = *lo + 0.3 * (*hi - *lo);
-    const int bins = static_cast<int>(best.model.size());
-    zone.resize(sew.size());
-    for (size_t i = 0; i < sew.size(); ++i) {
-      double turns = i / fs * id.cage_hz;
-      turns -= std::floor(turns);
-      zone[i] = best.model[std::min(bins - 1, static_cast<int>(turns * bins))] > level;
-    }
-  }
   WidthFitOptions wo = options.width;
   const double chord_max = 2.0 * std::asin(0.8) / (2.0 * kPi * id.spin_hz);  // w = 0.8 d
   wo.max_delay_s = std::min(
@@ -262,16 +308,48 @@ Identification Identify(const Record& record,
   }
   wo.noise_correlation_s = 1.0 / (id.width_band_high_hz - id.width_band_low_hz);
   const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
-  id.width_fit = FitEntryExit(sew, fs, zone, block, wo);
-  const WidthFit& wf = id.width_fit;
+  const int lookahead = static_cast<int>(std::ceil((wo.max_delay_s + wo.tail_s) * fs));
+  const HumpFit& humps = id.count_fit.best[id.count];
+  id.width_fit = FitEntryExit(
+      sew,
+      fs,
+      LoadZoneSamples(humps, id.cage_average, z, id.cage_hz, fs, sew.size(), 0.0, lookahead),
+      block,
+      wo);
   // The other rollers' lag nearest to the delay, if it lies within the window.
-  std::optional<double> cross_lag;
+  std::optional<double> cross_lag;  // the other rollers' lag the delay lies on, if any
   for (double lag : cross_lags) {
-    const double off = std::abs(wf.best.delay_s - lag);
+    const double off = std::abs(id.width_fit.best.delay_s - lag);
     if (off < options.cross_lag_half_width_s &&
-        (!cross_lag || off < std::abs(wf.best.delay_s - *cross_lag)))
+        (!cross_lag || off < std::abs(id.width_fit.best.delay_s - *cross_lag)))
       cross_lag = lag;
   }
+  // A delay on another roller's lag is kept when the same pair stands out where each roller has
+  // the load zone to itself: there the other rollers' impacts are weak, a release and landing is
+  // not (IdentifyOptions::width_exclusive_ratio).
+  if (cross_lag && id.width_fit.usable && options.width_exclusive_ratio > 0) {
+    const std::vector<char> exclusive = LoadZoneSamples(humps,
+                                                        id.cage_average,
+                                                        z,
+                                                        id.cage_hz,
+                                                        fs,
+                                                        sew.size(),
+                                                        options.width_exclusive_ratio,
+                                                        lookahead);
+    // The same pair, judged without the bootstrap (its interval is needed only when it is).
+    WidthFitOptions quick = wo;
+    quick.bootstrap = 0;
+    id.width_fit_exclusive = FitEntryExit(sew, fs, exclusive, block, quick);
+    const WidthFit& x = id.width_fit_exclusive;
+    if (x.usable &&
+        std::abs(x.best.delay_s - id.width_fit.best.delay_s) < options.cross_lag_half_width_s &&
+        x.delay_power_significance >= options.min_delay_significance &&
+        x.best.PairPowerRatio() >= options.width_exclusive_min_pair_power_ratio) {
+      id.width_fit = id.width_fit_exclusive = FitEntryExit(sew, fs, exclusive, block, wo);
+      id.width_from_exclusive_zone = true;
+    }
+  }
+  const WidthFit& wf = id.width_fit;
   // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
   // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
   const double release_angle =
@@ -287,11 +365,15 @@ Identification Identify(const Record& record,
   std::string& why = width_reason;
   if (!wf.usable) {
     why = "width: not identifiable (" + wf.message + ")";
-  } else if (cross_lag) {
+  } else if (cross_lag && !id.width_from_exclusive_zone) {
     why = "width: not identifiable (the second event at " +
           FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms lies on another defective roller's " +
           "impacts (" + FormatNumber("%.2f", *cross_lag * 1e3) +
-          " ms from the spin phases): their correlation, not a release and landing)";
+          " ms from the spin phases): their correlation, not a release and landing" +
+          (id.width_fit_exclusive.usable
+               ? std::string("; where each roller has the load zone to itself no like pair")
+               : std::string()) +
+          ")";
   } else if (wf.delay_power_significance < options.min_delay_significance) {
     why = "width: not identifiable (no entry event resolved before the impacts: significance " +
           FormatNumber("%.1f", wf.delay_power_significance) + ")";
@@ -439,6 +521,8 @@ std::string Identification::ToJson(int indent) const {
           {"second_event_significance", width_fit.delay_power_significance},
           {"power_ratio", width_fit.best.PairPowerRatio()},
           {"rise_ms", width_fit.best.rise_s * 1e3},
+          {"delay_rise_ms", width_fit.best.delay_rise_s * 1e3},
+          {"from_exclusive_zone", width_from_exclusive_zone},
           {"decay_ms", width_fit.best.decay_s * 1e3}};
       std::vector<double> lags_ms;
       for (double lag : other_rollers_lags_s) lags_ms.push_back(lag * 1e3);

@@ -103,6 +103,22 @@ struct IdentifyOptions {
   // spalls that are never released, read 1.7-2.4 mm) lay within 0.1 ms of a predicted lag
   // (docs/IDENTIFY.md, "Width").
   double cross_lag_half_width_s = 0.25e-3;
+  // A delay within cross_lag_half_width_s of another roller's lag is still stated when the
+  // autocorrelation taken only where one defective roller has the load zone to itself shows the
+  // same pair: its delay within cross_lag_half_width_s of the whole zone's, significance >=
+  // min_delay_significance and power ratio >= width_exclusive_min_pair_power_ratio (then the
+  // gates below apply to that fit). "To itself": its fitted hump (feature A) above 0.3 of its own
+  // peak and the other defective rollers' humps together below width_exclusive_ratio of it, at
+  // the sample and at the longest lag after it. By the fitted humps another roller's impacts are
+  // there at most that fraction of the roller's own, so their correlation stays below the
+  // min_pair_power_ratio a release and landing must show (the two defaults are the same number
+  // for that reason; unmodelled impacts outside the load zone are why the refit must also find
+  // the pair strong). 0: the lag rule refuses every such delay (docs/IDENTIFY.md, "Width").
+  double width_exclusive_ratio = 0.1;
+  // The refit's pair must correlate at least at this fraction of the zero-lag power: 0.2, the
+  // low end of the 0.23-0.82 measured on the calibration records whose width is right
+  // (min_pair_power_ratio above); SignalModelOptions(): 0, as there.
+  double width_exclusive_min_pair_power_ratio = 0.2;
   // The widest spall the calibration covers, as a fraction of the element diameter: a fit beyond
   // it extrapolates the calibration (or has locked onto another event) and is not stated. Default:
   // the widest of the calibration set (2.5 mm on the N205EM's 6.5 mm roller,
@@ -153,6 +169,10 @@ struct Identification {
   SpinSidebands sidebands;
   CountFit count_fit;
   WidthFit width_fit;
+  // The width's fit where each defective roller has the load zone to itself, made when the delay
+  // of width_fit lies on another roller's lag; it replaces width_fit when it confirms the delay.
+  WidthFit width_fit_exclusive;
+  bool width_from_exclusive_zone = false;
   // Lags at which the other defective rollers' impacts correlate with one roller's (from the
   // spin phases; empty for one roller): a delay on one of them is not stated.
   std::vector<double> other_rollers_lags_s;

@@ -196,7 +196,14 @@ ValidationReport ValidateOnFiles(const std::vector<std::string>& files,
         r.delay_low_s = id.width_fit.delay_low_s;
         r.delay_high_s = id.width_fit.delay_high_s;
         r.delay_significance = id.width_fit.delay_power_significance;
+        r.pair_power_ratio = id.width_fit.best.PairPowerRatio();
       }
+      if (id.width_fit_exclusive.usable) {
+        r.exclusive_delay_s = id.width_fit_exclusive.best.delay_s;
+        r.exclusive_pair_power_ratio = id.width_fit_exclusive.best.PairPowerRatio();
+        r.exclusive_significance = id.width_fit_exclusive.delay_power_significance;
+      }
+      r.width_from_exclusive_zone = id.width_from_exclusive_zone;
       if (r.true_count > 0 && id.spin_hz > 0)
         r.true_delay_s = 2.0 * std::asin(std::min(1.0, r.true_width_m / g.element_diameter_m)) /
                          (2.0 * kPi * id.spin_hz);
@@ -312,7 +319,9 @@ std::string ValidationReport::ToCsv() const {
         "count,count_probability,p_true_count,count_cage,p_cage,count_sidebands,p_sidebands,"
         "chi2_scale_cage,chi2_scale_sidebands,positions_right,positions_mirrored,width_stated,"
         "width_mm,width_low_mm,"
-        "width_high_mm,true_delay_ms,delay_ms,delay_low_ms,delay_high_ms,delay_significance,cpu_s,"
+        "width_high_mm,true_delay_ms,delay_ms,delay_low_ms,delay_high_ms,delay_significance,"
+        "pair_power_ratio,exclusive_delay_ms,exclusive_pair_power_ratio,exclusive_significance,"
+        "width_from_exclusive_zone,cpu_s,"
         "log_evidence_cage,log_evidence_sidebands,reasons\n";
   auto joined = [](const std::vector<double>& v) {
     std::string out;
@@ -347,9 +356,13 @@ std::string ValidationReport::ToCsv() const {
        << FormatNumber("%.4f", r.true_delay_s * 1e3) << "," << FormatNumber("%.4f", r.delay_s * 1e3)
        << "," << FormatNumber("%.4f", r.delay_low_s * 1e3) << ","
        << FormatNumber("%.4f", r.delay_high_s * 1e3) << ","
-       << FormatNumber("%.3g", r.delay_significance) << "," << FormatNumber("%.3f", r.cpu_s) << ","
-       << joined(r.log_evidence_cage) << "," << joined(r.log_evidence_sidebands) << ",\"" << reasons
-       << "\"\n";
+       << FormatNumber("%.3g", r.delay_significance) << ","
+       << FormatNumber("%.3g", r.pair_power_ratio) << ","
+       << FormatNumber("%.4f", r.exclusive_delay_s * 1e3) << ","
+       << FormatNumber("%.3g", r.exclusive_pair_power_ratio) << ","
+       << FormatNumber("%.3g", r.exclusive_significance) << "," << r.width_from_exclusive_zone
+       << "," << FormatNumber("%.3f", r.cpu_s) << "," << joined(r.log_evidence_cage) << ","
+       << joined(r.log_evidence_sidebands) << ",\"" << reasons << "\"\n";
   }
   return os.str();
 }

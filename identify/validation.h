@@ -59,6 +59,11 @@ struct ValidatedRecord {
   double width_m = 0.0, width_low_m = 0.0, width_high_m = 0.0;
   // The width fit whether or not its width was stated (0 when it did not run).
   double delay_s = 0.0, delay_low_s = 0.0, delay_high_s = 0.0, delay_significance = 0.0;
+  double pair_power_ratio = 0.0;  // the second event's correlation over the zero-lag power
+  // The refit where each defective roller has the load zone to itself (made when the delay lies
+  // on another roller's lag; 0 when not made), and whether it gave the width.
+  double exclusive_delay_s = 0.0, exclusive_pair_power_ratio = 0.0, exclusive_significance = 0.0;
+  bool width_from_exclusive_zone = false;
   std::string reasons;  // "; "-joined
   double cpu_s = 0.0;   // diagnosis + identification, this process's CPU time
   double record_s = 0.0;

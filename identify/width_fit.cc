@@ -410,17 +410,16 @@ WidthFit FitEntryExit(std::span<const double> se,
     out.delay_low_s = std::max(bd.min_delay, std::min(q(0.05), out.best.delay_s - half));
     out.delay_high_s = std::min(bd.max_delay, std::max(q(0.95), out.best.delay_s + half));
     (void)powers;
-    // Significance of the second event: the likelihood-ratio statistic against no second event,
-    // in units of the best fit's reduced chi2 and of the lags' correlation length (R is smooth
-    // over about 2 rise times, so neighbouring lags are not independent).
-    const double chi2_0 = NullChi2(out.correlation, lags, bd, out.best);
-    const double scale = std::max(1.0, out.best.chi2 / std::max(1, lags - 8));
-    const double corr = std::max(1.0, 2.0 * out.best.rise_s * rate_hz);
-    out.delay_power_significance =
-        std::sqrt(std::max(0.0, chi2_0 - out.best.chi2) / (scale * corr));
   } else {
     out.delay_low_s = out.delay_high_s = out.best.delay_s;
   }
+  // Significance of the second event: the likelihood-ratio statistic against no second event,
+  // in units of the best fit's reduced chi2 and of the lags' correlation length (R is smooth
+  // over about 2 rise times, so neighbouring lags are not independent).
+  const double chi2_0 = NullChi2(out.correlation, lags, bd, out.best);
+  const double scale = std::max(1.0, out.best.chi2 / std::max(1, lags - 8));
+  const double corr = std::max(1.0, 2.0 * out.best.rise_s * rate_hz);
+  out.delay_power_significance = std::sqrt(std::max(0.0, chi2_0 - out.best.chi2) / (scale * corr));
   return out;
 }
 

@@ -44,8 +44,8 @@ struct WidthFitOptions {
   double max_delay_s = 2.5e-3;
   double tail_s = 1.5e-3;  // lags fitted beyond max_delay_s
   int delay_grid = 80;
-  int bootstrap = 200;
-  int min_blocks = 3;  // blocks (cage revolutions) with load-zone samples
+  int bootstrap = 200;  // resamples for the interval (< 10: none, the interval is the estimate)
+  int min_blocks = 3;   // blocks (cage revolutions) with load-zone samples
   // Correlation time of the band's noise (about 1 / band width; the Gaussian peak P_n at tau = 0
   // takes it); 0: one sample (white).
   double noise_correlation_s = 0.0;

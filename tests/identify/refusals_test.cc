@@ -57,9 +57,10 @@ TEST(Refusals, WidthBelowTheResolutionIsNotStated) {
 }
 
 // Two rollers with spalls too narrow to give a pair of their own (0.3 mm at 1200 rpm: 0.13 ms),
-// 25 deg apart in spin phase: each roller's impacts correlate with the other's at 1.2 ms, which
-// reads as a 1.4 mm spall. The delay lies on the lag of the two rollers' spin phases, so no width
-// is stated; without that rule (cross_lag_half_width_s = 0) the wrong width would be.
+// in adjacent slots and 25 deg apart in spin phase: each roller's impacts correlate with the
+// other's at 1.2 ms, which reads as a 1.4 mm spall. The delay lies on the lag of the two rollers'
+// spin phases and no like pair stands out where one roller has the load zone to itself, so no
+// width is stated; without the lag rule (cross_lag_half_width_s = 0) the wrong width would be.
 TEST(Refusals, DelayOnAnotherRollersImpactsIsNotAWidth) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0, 0.3, 0}, {1, 0.3, 25}}, 2));
   IdentifyOptions o = SignalModelOptions();
@@ -68,6 +69,7 @@ TEST(Refusals, DelayOnAnotherRollersImpactsIsNotAWidth) {
   ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
   ASSERT_EQ(id.count, 2);
   EXPECT_FALSE(id.width_identifiable) << id.BriefReport();
+  EXPECT_FALSE(id.width_from_exclusive_zone);
   EXPECT_TRUE(spallkit::testing::HasReason(id, "another defective roller's impacts"))
       << id.BriefReport();
 
@@ -75,6 +77,32 @@ TEST(Refusals, DelayOnAnotherRollersImpactsIsNotAWidth) {
   const Identification unguarded = IdentifyRecord(r, 1200, 10000, o);
   ASSERT_TRUE(unguarded.width_identifiable) << unguarded.BriefReport();
   EXPECT_GT(unguarded.width_m, 1.0e-3);  // the cross correlation read as a wide spall
+}
+
+// Two 1.5 mm spalls in slots 0 and 5 whose rollers strike 1.26 ms apart, on their own
+// entry-exit delay (1.25 ms at 1200 rpm). The delay lies on the other roller's lag, but the
+// autocorrelation where each roller has the load zone to itself (IdentifyOptions::
+// width_exclusive_ratio) shows the same pair, so the width is stated, and right; without that
+// refit the lag rule refuses it.
+TEST(Refusals, PairOnAnotherRollersLagIsConfirmedWhereEachRollerIsAlone) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0, 1.5, 0}, {5, 1.5, 26}}, 3));
+  IdentifyOptions o = SignalModelOptions();
+  o.width_max_count = 2;
+  const Identification id = IdentifyRecord(r, 1200, 10000, o);
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  ASSERT_EQ(id.count, 2);
+  ASSERT_TRUE(id.width_identifiable) << id.BriefReport();
+  EXPECT_TRUE(id.width_from_exclusive_zone);
+  EXPECT_NEAR(id.width_m, 1.5e-3, 0.15 * 1.5e-3);
+  double nearest = 1.0;
+  for (double lag : id.other_rollers_lags_s)
+    nearest = std::min(nearest, std::abs(lag - id.width_fit.best.delay_s));
+  EXPECT_LT(nearest, o.cross_lag_half_width_s);  // the delay lies on the other roller's lag
+
+  o.width_exclusive_ratio = 0.0;
+  const Identification lag_rule = IdentifyRecord(r, 1200, 10000, o);
+  EXPECT_FALSE(lag_rule.width_identifiable) << lag_rule.BriefReport();
+  EXPECT_TRUE(spallkit::testing::HasReason(lag_rule, "another defective roller's impacts"));
 }
 
 // A width beyond the calibration's widest (IdentifyOptions::width_max_diameter_fraction) is not
