@@ -23,6 +23,16 @@ void ExpectNothingStated(const Identification& id) {
   EXPECT_NE(json.find("\"width_mm\": null"), std::string::npos);
 }
 
+// Identifies a two-roller record of the signal model at 1200 rpm and 10 kN with widths stated
+// for up to two rollers, and checks that both rollers are counted.
+Identification IdentifyTwoRollers(const Record& r, IdentifyOptions o) {
+  o.width_max_count = 2;
+  const Identification id = IdentifyRecord(r, 1200, 10000, o);
+  EXPECT_TRUE(id.count_identifiable) << id.BriefReport();
+  EXPECT_EQ(id.count, 2);
+  return id;
+}
+
 TEST(Refusals, OuterRaceFaultHasNoRollerCount) {
   spallkit::testing::FaultSignalSpec s;
   s.fs_hz = 20000;
@@ -64,17 +74,14 @@ TEST(Refusals, WidthBelowTheResolutionIsNotStated) {
 TEST(Refusals, DelayOnAnotherRollersImpactsIsNotAWidth) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0, 0.3, 0}, {1, 0.3, 25}}, 2));
   IdentifyOptions o = SignalModelOptions();
-  o.width_max_count = 2;
-  const Identification id = IdentifyRecord(r, 1200, 10000, o);
-  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
-  ASSERT_EQ(id.count, 2);
+  const Identification id = IdentifyTwoRollers(r, o);
   EXPECT_FALSE(id.width_identifiable) << id.BriefReport();
   EXPECT_FALSE(id.width_from_exclusive_zone);
   EXPECT_TRUE(spallkit::testing::HasReason(id, "another defective roller's impacts"))
       << id.BriefReport();
 
   o.cross_lag_half_width_s = 0.0;
-  const Identification unguarded = IdentifyRecord(r, 1200, 10000, o);
+  const Identification unguarded = IdentifyTwoRollers(r, o);
   ASSERT_TRUE(unguarded.width_identifiable) << unguarded.BriefReport();
   EXPECT_GT(unguarded.width_m, 1.0e-3);  // the cross correlation read as a wide spall
 }
@@ -87,10 +94,7 @@ TEST(Refusals, DelayOnAnotherRollersImpactsIsNotAWidth) {
 TEST(Refusals, PairOnAnotherRollersLagIsConfirmedWhereEachRollerIsAlone) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0, 1.5, 0}, {5, 1.5, 26}}, 3));
   IdentifyOptions o = SignalModelOptions();
-  o.width_max_count = 2;
-  const Identification id = IdentifyRecord(r, 1200, 10000, o);
-  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
-  ASSERT_EQ(id.count, 2);
+  const Identification id = IdentifyTwoRollers(r, o);
   ASSERT_TRUE(id.width_identifiable) << id.BriefReport();
   EXPECT_TRUE(id.width_from_exclusive_zone);
   EXPECT_NEAR(id.width_m, 1.5e-3, 0.15 * 1.5e-3);
@@ -100,7 +104,7 @@ TEST(Refusals, PairOnAnotherRollersLagIsConfirmedWhereEachRollerIsAlone) {
   EXPECT_LT(nearest, o.cross_lag_half_width_s);  // the delay lies on the other roller's lag
 
   o.width_exclusive_ratio = 0.0;
-  const Identification lag_rule = IdentifyRecord(r, 1200, 10000, o);
+  const Identification lag_rule = IdentifyTwoRollers(r, o);
   EXPECT_FALSE(lag_rule.width_identifiable) << lag_rule.BriefReport();
   EXPECT_TRUE(spallkit::testing::HasReason(lag_rule, "another defective roller's impacts"));
 }
