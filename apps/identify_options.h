@@ -22,6 +22,7 @@ struct IdentifyStatementOptions {
   CLI::Option* width_count_option = nullptr;
   std::vector<double> temperatures;
   CLI::Option* temperatures_option = nullptr;
+  bool pattern_per_parity = false;
 
   void Add(CLI::App& sub) {
     probability_option =
@@ -44,6 +45,10 @@ struct IdentifyStatementOptions {
                            Number(count.temperature_sidebands) + ")")
             ->expected(2)
             ->delimiter(',');
+    sub.add_flag("--sideband-pattern-per-parity",
+                 pattern_per_parity,
+                 "the count's sideband feature with one cage-angle pattern for the odd and one for "
+                 "the even spin harmonics (measured, not the default: docs/IDENTIFY.md)");
   }
 
   // Throws InputError naming the option when a given value is out of range. The ranges are the
@@ -74,6 +79,7 @@ struct IdentifyStatementOptions {
               t->count.temperature_cage = temperatures[0];
               t->count.temperature_sidebands = temperatures[1];
             });
+    if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
   }
 };
 

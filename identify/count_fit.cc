@@ -301,6 +301,112 @@ double SidebandChi2At(const SpinSidebands& sb,
   return chi2;
 }
 
+// Feature B's chi2 of a configuration for given spin phases of rollers 2..K (roller 1's is in
+// p_j): S_jm = p_j G^(j mod 2)_m sum_k a_k e^{-i j phi_k} e^{i m 2 pi s_k / Z}, with p_j
+// (complex, per harmonic), the cage-angle patterns G^0, G^1 (complex per order m, shared by the
+// rollers, one for the even and one for the odd spin harmonics) and a_k (real, >= 0, shared by
+// the harmonics) by alternating least squares from equal strengths and the start patterns
+// (complex lines: each residual counts with variance noise_power / 2 per real component).
+// Why two patterns: a roller strikes the outer race at spin phase phi and the inner race half a
+// turn later, so its odd harmonics carry the difference of the two races' impacts and the even
+// ones their sum; the two reach the sensor with different weights over the cage angle (on the
+// lumped model's horizontal channel the odd and even patterns of one roller differ by a median
+// 0.47 in 1 - |cos| against 0.01 within a parity, docs/IDENTIFY.md), which one shared pattern
+// can only fit with a second, phantom roller.
+double SidebandChi2AtPerParity(const SpinSidebands& sb,
+                               const std::vector<int>& slots,
+                               int z,
+                               const std::vector<std::complex<double>>& start_pattern,
+                               const std::vector<double>& phase) {
+  const int k = static_cast<int>(slots.size());
+  const int lines = 2 * sb.orders + 1;
+  const int nj = sb.harmonics;
+  auto line = [&](int j, int m) { return static_cast<size_t>(j - 1) * lines + m + sb.orders; };
+  // Basis v[(j, m), q] = e^{-i j phi_q} e^{i m 2 pi s_q / Z}.
+  std::vector<std::complex<double>> v(static_cast<size_t>(nj) * lines * k);
+  for (int q = 0; q < k; ++q) {
+    const std::complex<double> e1 = std::polar(1.0, -phase[q]);
+    std::complex<double> e = e1;
+    for (int j = 1; j <= nj; ++j, e *= e1)
+      for (int m = -sb.orders; m <= sb.orders; ++m)
+        v[line(j, m) * k + q] = e * std::polar(1.0, m * 2.0 * kPi * slots[q] / z);
+  }
+  std::vector<std::complex<double>> g[2] = {start_pattern, start_pattern};
+  std::vector<double> a(k,
+                        1.0);  // equal strengths to start: feature A's are poor when humps overlap
+  std::vector<std::complex<double>> p(nj, 0.0);
+  auto u_of = [&](int j, int m) {
+    std::complex<double> u = 0.0;
+    for (int q = 0; q < k; ++q) u += a[q] * v[line(j, m) * k + q];
+    return u;
+  };
+  auto weight = [&](int j, int m) { return 1.0 / sb.noise_power[sb.Index(j, m)]; };
+  auto solve_p = [&]() {
+    for (int j = 1; j <= nj; ++j) {
+      std::complex<double> num = 0.0;
+      double den = 0.0;
+      for (int m = -sb.orders; m <= sb.orders; ++m) {
+        const std::complex<double> u = g[j % 2][m + sb.orders] * u_of(j, m);
+        num += weight(j, m) * std::conj(u) * sb.value[sb.Index(j, m)];
+        den += weight(j, m) * std::norm(u);
+      }
+      p[j - 1] = den > 0 ? num / den : 0.0;
+    }
+  };
+  auto solve_patterns = [&]() {  // each normalised: its scale is p_j's
+    for (int par = 0; par < 2; ++par) {
+      double norm = 0.0;
+      for (int m = -sb.orders; m <= sb.orders; ++m) {
+        std::complex<double> num = 0.0;
+        double den = 0.0;
+        for (int j = 2 - par; j <= nj; j += 2) {
+          const std::complex<double> u = p[j - 1] * u_of(j, m);
+          num += weight(j, m) * std::conj(u) * sb.value[sb.Index(j, m)];
+          den += weight(j, m) * std::norm(u);
+        }
+        if (den > 0) g[par][m + sb.orders] = num / den;
+        norm += std::norm(g[par][m + sb.orders]);
+      }
+      if (norm > 0)
+        for (auto& x : g[par]) x /= std::sqrt(norm);
+    }
+  };
+  auto solve_strengths = [&]() {
+    std::vector<double> ata(static_cast<size_t>(k) * k, 0.0), atb(k, 0.0);
+    for (int j = 1; j <= nj; ++j)
+      for (int m = -sb.orders; m <= sb.orders; ++m) {
+        const std::complex<double> pg = p[j - 1] * g[j % 2][m + sb.orders];
+        for (int r = 0; r < k; ++r) {
+          const std::complex<double> br = pg * v[line(j, m) * k + r];
+          atb[r] += weight(j, m) * std::real(std::conj(br) * sb.value[sb.Index(j, m)]);
+          for (int c = 0; c < k; ++c)
+            ata[r * k + c] += weight(j, m) * std::real(std::conj(br) * pg * v[line(j, m) * k + c]);
+        }
+      }
+    if (!SolveSymmetric(k, &ata, &atb)) return;
+    const double amax = *std::max_element(atb.begin(), atb.end());
+    if (!(amax > 0)) return;
+    for (int q = 0; q < k; ++q) a[q] = std::max(atb[q], 0.0) / amax;
+  };
+  constexpr int kAlternations = 5;
+  solve_p();
+  for (int it = 0; it < kAlternations; ++it) {
+    solve_patterns();
+    solve_p();
+    if (k > 1) {
+      solve_strengths();
+      solve_p();
+    }
+  }
+  double chi2 = 0.0;
+  for (int j = 1; j <= nj; ++j)
+    for (int m = -sb.orders; m <= sb.orders; ++m)
+      chi2 +=
+          std::norm(sb.value[sb.Index(j, m)] - p[j - 1] * g[j % 2][m + sb.orders] * u_of(j, m)) *
+          (2.0 * weight(j, m));
+  return chi2;
+}
+
 double LogSumExp(const std::vector<double>& v) {
   double m = -std::numeric_limits<double>::infinity();
   for (double x : v) m = std::max(m, x);
@@ -400,6 +506,55 @@ std::vector<double> HumpFourier(const HumpShape& shape, int orders) {
   return out;
 }
 
+namespace {
+
+// Feature B's chi2 of K = 0: every line is noise.
+double NoRollerSidebandChi2(const SpinSidebands& sb) {
+  double chi2 = 0.0;
+  for (size_t i = 0; i < sb.value.size(); ++i)
+    chi2 += std::norm(sb.value[i]) / (0.5 * sb.noise_power[i]);
+  return chi2;
+}
+
+// Minimises chi2(phase) over the spin phases of rollers 2..K from 0: a grid of 24 (12 above
+// K = 3) per roller in coordinate sweeps (two for K = 3), then a pattern search below the grid
+// step (a phase error of half a step, 7.5 deg, is 30 deg at the fourth harmonic, enough to make a
+// true configuration misfit). *phase holds the minimiser; returns the minimum.
+template <typename Chi2>
+double SearchSpinPhases(int k, const Chi2& chi2, std::vector<double>* phase_io) {
+  std::vector<double>& phase = *phase_io;
+  const int kPhaseSteps = k <= 3 ? 24 : 12;
+  const int kSweeps = k == 3 ? 2 : 1;
+  std::fill(phase.begin(), phase.end(), 0.0);
+  double c = chi2(phase);
+  for (int sweep = 0; sweep < kSweeps && k > 1; ++sweep)
+    for (int q = 1; q < k; ++q) {
+      double keep = phase[q];
+      for (int g = 0; g < kPhaseSteps; ++g) {
+        phase[q] = 2.0 * kPi * g / kPhaseSteps;
+        const double cg = chi2(phase);
+        if (cg < c) c = cg, keep = phase[q];
+      }
+      phase[q] = keep;
+    }
+  for (int q = 1; q < k; ++q)
+    for (double step = kPi / kPhaseSteps; step > 0.002; step /= 3.0) {
+      const double keep = phase[q];
+      for (double d : {-step, step}) {
+        phase[q] = keep + d;
+        const double cg = chi2(phase);
+        if (cg < c)
+          c = cg;
+        else
+          phase[q] = keep;
+        if (phase[q] != keep) break;
+      }
+    }
+  return c;
+}
+
+}  // namespace
+
 // Feature B's chi2 of a configuration, minimised over the spin phases of rollers 2..K (grid of
 // kPhaseSteps, coordinate sweeps), a common offset of the humps within +/- one slot (feature A's
 // hump centre is only as good as that average's lumps; grid and parabola) and two hump shapes.
@@ -413,14 +568,10 @@ double SidebandChi2(const SpinSidebands& sb,
   std::vector<double> phase(k, 0.0);
   if (k == 0) {
     *parameters = 0;
-    double chi2 = 0.0;
-    for (size_t i = 0; i < sb.value.size(); ++i)
-      chi2 += std::norm(sb.value[i]) / (0.5 * sb.noise_power[i]);
-    return chi2;
+    return NoRollerSidebandChi2(sb);
   }
   *parameters = 2 * sb.harmonics + 2 * (k - 1) + 1 + 1;
-  const int kDeltaSteps = k <= 3 ? 7 : 3, kPhaseSteps = k <= 3 ? 24 : 12;
-  const int kSweeps = k == 3 ? 2 : 1;
+  const int kDeltaSteps = k <= 3 ? 7 : 3;
   const double range = 2.0 * kPi / z;  // +/- one slot
   // The hump's spectrum: feature A's shape of this configuration, or a plain q of the same half
   // angle (A's shape is poorly fixed when humps overlap; the lines then choose).
@@ -442,33 +593,8 @@ double SidebandChi2(const SpinSidebands& sb,
           em[(m + sb.orders) * k + q] =
               mm[std::abs(m)] *
               std::polar(1.0, m * (2.0 * kPi * f.slots[q] / z - f.theta0_rad - delta));
-      std::fill(phase.begin(), phase.end(), 0.0);
-      double c = SidebandChi2At(sb, f, em, phase);
-      for (int sweep = 0; sweep < kSweeps && k > 1; ++sweep)
-        for (int q = 1; q < k; ++q) {
-          double keep = phase[q];
-          for (int g = 0; g < kPhaseSteps; ++g) {
-            phase[q] = 2.0 * kPi * g / kPhaseSteps;
-            const double cg = SidebandChi2At(sb, f, em, phase);
-            if (cg < c) c = cg, keep = phase[q];
-          }
-          phase[q] = keep;
-        }
-      // Pattern search below the grid step: a phase error of half a step (5.6 deg) is 22 deg at
-      // the fourth harmonic, enough to make a true configuration misfit.
-      for (int q = 1; q < k; ++q)
-        for (double step = kPi / kPhaseSteps; step > 0.002; step /= 3.0) {
-          const double keep = phase[q];
-          for (double d : {-step, step}) {
-            phase[q] = keep + d;
-            const double cg = SidebandChi2At(sb, f, em, phase);
-            if (cg < c)
-              c = cg;
-            else
-              phase[q] = keep;
-            if (phase[q] != keep) break;
-          }
-        }
+      const double c = SearchSpinPhases(
+          k, [&](const std::vector<double>& ph) { return SidebandChi2At(sb, f, em, ph); }, &phase);
       if (c < best_phase_chi2) best_phase_chi2 = c, best_phase = phase;
       return c;
     };
@@ -488,6 +614,37 @@ double SidebandChi2(const SpinSidebands& sb,
   }
   if (spin_phase) *spin_phase = best_phase;
   return best;
+}
+
+// Feature B's chi2 of a configuration, minimised over the spin phases of rollers 2..K (grid of
+// kPhaseSteps, coordinate sweeps, then a pattern search below the grid step). The cage-angle
+// patterns start from feature A's hump of this configuration, M_m e^{-i m theta_0}.
+// Parameters: one complex p_j per harmonic, two patterns of 2M + 1 complex orders (less one
+// complex scale each, p_j's), K - 1 phases and K - 1 strength ratios.
+double SidebandChi2PerParity(const SpinSidebands& sb,
+                             const HumpFit& f,
+                             int z,
+                             int* parameters,
+                             std::vector<double>* spin_phase) {
+  const int k = static_cast<int>(f.slots.size());
+  std::vector<double> phase(k, 0.0);
+  if (k == 0) {
+    *parameters = 0;
+    return NoRollerSidebandChi2(sb);
+  }
+  *parameters = 2 * sb.harmonics + 2 * 2 * (2 * sb.orders + 1) - 2 * 2 + 2 * (k - 1);
+  const std::vector<double> mm = HumpFourier(f.shape, sb.orders);
+  std::vector<std::complex<double>> start(2 * sb.orders + 1);
+  for (int m = -sb.orders; m <= sb.orders; ++m)
+    start[m + sb.orders] = mm[std::abs(m)] * std::polar(1.0, -m * f.theta0_rad);
+  const double c = SearchSpinPhases(
+      k,
+      [&](const std::vector<double>& ph) {
+        return SidebandChi2AtPerParity(sb, f.slots, z, start, ph);
+      },
+      &phase);
+  if (spin_phase) *spin_phase = phase;
+  return c;
 }
 
 CountFit FitRollerCount(const CageAverage& average,
@@ -540,7 +697,10 @@ CountFit FitRollerCount(const CageAverage& average,
   std::vector<int> n_configs(kmax + 1, 1);
   auto score_b = [&](HumpFit* f) {
     int p = 0;
-    if (sb) f->chi2_sidebands = SidebandChi2(*sb, *f, z, &p, &f->spin_phase_rad);
+    if (sb)
+      f->chi2_sidebands = o.sideband_pattern_per_parity
+                              ? SidebandChi2PerParity(*sb, *f, z, &p, &f->spin_phase_rad)
+                              : SidebandChi2(*sb, *f, z, &p, &f->spin_phase_rad);
     return p;
   };
   auto valid = [&](const HumpFit& f) {

@@ -24,6 +24,13 @@
 // slot; phi_k the spall's spin phase on roller k (phi_1 = 0, the others on a grid of 24, two
 // coordinate sweeps); p_j one complex factor per spin harmonic (impact spectrum, outer/inner
 // alternation, slip smear), by least squares.
+// With CountFitOptions::sideband_pattern_per_parity (not the default) instead
+//     S_jm = p_j G^(j mod 2)_m sum_k a_k e^{-i j phi_k} e^{i m 2 pi s_k / Z},
+// G^0 and G^1 the cage-angle patterns of the even and the odd spin harmonics (complex per order,
+// shared by the rollers, fitted from M_m e^{-i m theta_0} by alternating least squares with p_j
+// and a_k): a roller strikes the outer race at spin phase phi_k and the inner race half a turn
+// later, so its odd harmonics carry the difference of the two races' impacts and its even ones
+// their sum, and the two reach the sensor with different weights over the cage angle.
 //
 // Search. A configuration is the slot set up to rotation (a necklace containing slot 0): 1 for
 // K = 1, 6 for K = 2 and 22 for K = 3 on 13 slots. Up to exhaustive_max_count every configuration
@@ -75,6 +82,10 @@ struct CountFitOptions {
   // Half angle of the load zone (rad): > 0 fixes it (from the record's load), 0 fits it.
   double load_zone_half_angle_rad = 0.0;
   bool use_sidebands = true;  // feature B (when sidebands are given)
+  // Feature B with one cage-angle pattern per parity of the spin harmonic, fitted and shared by
+  // the rollers, instead of feature A's hump for every harmonic (see "Feature B" above). Off by
+  // default: measured, not adopted (docs/IDENTIFY.md, "Feature B's patterns per parity").
+  bool sideband_pattern_per_parity = false;
   // Temperatures of each feature's log evidence: P(K) is proportional to
   // exp(ln Z_A(K) / temperature_cage + ln Z_B(K) / temperature_sidebands). The BIC evidence
   // assumes the model is right up to independent noise; on simulated records it is not (the

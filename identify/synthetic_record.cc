@@ -116,7 +116,8 @@ Record MakeSyntheticRecord(const SyntheticRecordSpec& s, SyntheticTruth* truth) 
       const double q = zone.Relative(psi);
       double a = r.gain * std::max(std::pow(q, s.load_exponent), s.unloaded_floor);
       if (n % 2 != 0) a *= s.inner_race_ratio;  // odd half-turns: spall on the inner race
-      if (s.sensor_angle_rad) a *= std::cos(psi - *s.sensor_angle_rad);
+      if (s.sensor_angle_rad && (n % 2 == 0 || s.inner_race_projected))
+        a *= std::cos(psi - *s.sensor_angle_rad);
       const double jx = s.event_jitter_s * gauss(rng), jn = s.event_jitter_s * gauss(rng);
       events.push_back({te + jx, a, false});
       events.push_back({te - dt + jn, a * s.entry_ratio, true});

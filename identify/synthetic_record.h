@@ -59,7 +59,11 @@ struct SyntheticRecordSpec {
   // The sensor's direction from the load line (rad; pi/2: horizontal under a vertical load);
   // unset: every event reaches the sensor whole, wherever the roller is.
   std::optional<double> sensor_angle_rad;
-  double inner_race_ratio = 0.6;    // inner-race events relative to outer-race events
+  double inner_race_ratio = 0.6;  // inner-race events relative to outer-race events
+  // Inner-race events reach the sensor with the outer ones' projection; false: whole, wherever
+  // the roller is (through the shaft), so that the two races' impacts have different cage-angle
+  // patterns, as in spallkit's simulator (identify/count_fit.h, feature B).
+  bool inner_race_projected = true;
   double entry_ratio = 0.35;        // entry amplitude relative to exit
   double entry_resonance_hz = 0.0;  // entry rings this (lower) resonance; 0: the exit's ones
   double entry_damping_ratio = 0.08;

@@ -6,7 +6,7 @@ the per-K log evidences that `spall identify-check --csv` writes.
 
     spall identify-check runs/identify/tune --channel /signals/accel_z --sensor-angle-deg 90 \\
         --snr-db inf,10,0 --csv tune.csv
-    python3 scripts/choose_temperatures.py tune.csv [--check report.csv]
+    python3 scripts/choose_temperatures.py tune.csv [--check report.csv] [--max-confident-wrong 0]
 
 --check prints the same score on another set (e.g. the report set) at the chosen pair and at
 the current defaults, without using it for the choice. Needs numpy.
@@ -37,33 +37,57 @@ def load(path):
     return rows
 
 
+def log_probabilities(a, b, t_a, t_b):
+    """ln P(K) per K, P(K) proportional to exp(ln Z_A / t_a + ln Z_B / t_b)."""
+    z = a / t_a + b / t_b
+    finite = z[np.isfinite(z)]
+    top = finite.max()
+    return z - (top + math.log(np.exp(finite - top).sum()))
+
+
 def mean_log_p(rows, t_a, t_b, floor=-50.0):
-    """Mean ln P(true K) with P(K) proportional to exp(ln Z_A / t_a + ln Z_B / t_b)."""
+    """Mean ln P(true K) over the rows."""
     total = 0.0
     for k, a, b in rows:
-        z = a / t_a + b / t_b
-        finite = z[np.isfinite(z)]
-        top = finite.max()
-        log_norm = top + math.log(np.exp(finite - top).sum())
-        lp = z[k] - log_norm if k < len(z) and np.isfinite(z[k]) else floor
-        total += max(lp, floor)
+        lp = log_probabilities(a, b, t_a, t_b)
+        total += max(lp[k] if k < len(lp) and np.isfinite(lp[k]) else floor, floor)
     return total / len(rows)
+
+
+def confident_wrong(rows, t_a, t_b, level=0.99):
+    """Records whose most probable count is not the true one, at P >= level."""
+    n = 0
+    for k, a, b in rows:
+        lp = log_probabilities(a, b, t_a, t_b)
+        best = int(np.argmax(np.where(np.isfinite(lp), lp, -np.inf)))
+        if best != k and best > 0 and math.exp(lp[best]) >= level:
+            n += 1
+    return n
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("tune_csv")
     p.add_argument("--check", help="another set's CSV, scored but not used for the choice")
+    p.add_argument("--max-confident-wrong", type=int, default=None,
+                   help="only pairs with at most this many wrong counts at P >= 0.99 on the "
+                        "tuning set (the defaults: 0)")
     args = p.parse_args()
     tune = load(args.tune_csv)
-    best = max((mean_log_p(tune, a, b), a, b) for a in GRID for b in GRID)
+    pairs = [(a, b) for a in GRID for b in GRID]
+    if args.max_confident_wrong is not None:
+        pairs = [(a, b) for a, b in pairs
+                 if confident_wrong(tune, a, b) <= args.max_confident_wrong]
+    best = max((mean_log_p(tune, a, b), a, b) for a, b in pairs)
     print(f"tuning set: {len(tune)} records with a roller signature")
     print(f"chosen: T_A {best[1]}, T_B {best[2]}: mean ln P(true K) {best[0]:.3f} "
           f"(current {CURRENT[0]:g}, {CURRENT[1]:g}: {mean_log_p(tune, *CURRENT):.3f})")
     if args.check:
         other = load(args.check)
         print(f"check set: {len(other)} records; chosen {mean_log_p(other, best[1], best[2]):.3f}, "
-              f"current {mean_log_p(other, *CURRENT):.3f}")
+              f"current {mean_log_p(other, *CURRENT):.3f}; wrong at P >= 0.99: chosen "
+              f"{confident_wrong(other, best[1], best[2])}, current "
+              f"{confident_wrong(other, *CURRENT)}")
 
 
 if __name__ == "__main__":

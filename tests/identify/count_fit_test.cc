@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -78,6 +79,31 @@ TEST(CountFit, ThreeRollersAndTheirOrder) {
 // flanks, and none on the load line. Given the sensor's direction, the count fit projects its
 // humps the same way: one roller, and a closer fit of the cage average than with the sensor
 // taken on the load line or with no projection.
+// One roller whose inner-race impacts reach a horizontal sensor whole while its outer-race ones
+// come with sin psi: the odd and even spin harmonics have different cage-angle patterns. Feature
+// B with one pattern per parity (CountFitOptions::sideband_pattern_per_parity) takes it for one
+// roller; with one pattern for all harmonics a second, phantom roller fits the difference.
+TEST(CountFit, OuterAndInnerRaceImpactsWithTheirOwnPatternsAreOneRoller) {
+  auto spec = RollerRecordSpec(1200, 20, {{0, 1.38, 0}});
+  spec.sensor_angle_rad = 0.5 * kPi;
+  spec.inner_race_projected = false;
+  IdentifyOptions o = ExactModel();
+  o.count.sensor_angle_rad = 0.5 * kPi;
+  o.count.sideband_pattern_per_parity = true;
+  const Identification id = IdentifyRecord(MakeSyntheticRecord(spec), 1200, 10000, o);
+  ASSERT_EQ(id.probabilities_sidebands.size(), id.probabilities.size()) << id.BriefReport();
+  const auto& pb = id.probabilities_sidebands;
+  EXPECT_EQ(std::max_element(pb.begin(), pb.end()) - pb.begin(), 1) << id.BriefReport();
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  EXPECT_EQ(id.count, 1);
+  // One pattern for every harmonic (the default model) fits these lines worse (reduced chi2 20
+  // against 1) and makes the roller two.
+  o.count.sideband_pattern_per_parity = false;
+  const Identification shared = IdentifyRecord(MakeSyntheticRecord(spec), 1200, 10000, o);
+  EXPECT_GT(shared.count_fit.chi2_scale_sidebands, 5.0 * id.count_fit.chi2_scale_sidebands)
+      << shared.BriefReport();
+}
+
 TEST(CountFit, HorizontalSensorSeesOneRollerAsTwoLobes) {
   auto spec = RollerRecordSpec(1200, 10, {{0, 1.38, 0}});
   spec.sensor_angle_rad = 0.5 * kPi;
