@@ -553,6 +553,7 @@ std::string Identification::ToJson(int indent) const {
                                      : ordered_json(nullptr);
   settings["temperatures"] = {{"cage_average", options.count.temperature_cage},
                               {"sidebands", options.count.temperature_sidebands}};
+  settings["sideband_pattern_per_parity"] = options.count.sideband_pattern_per_parity;
   j["settings"] = settings;
   return j.dump(indent);
 }

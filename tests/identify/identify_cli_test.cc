@@ -70,6 +70,21 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
       << j["identifiable"]["reasons"].dump();
 }
 
+// The sideband feature's model with one pattern per parity (not the default) is chosen on the
+// command line and said in the settings; the sample record is one roller either way.
+TEST(IdentifyCli, SidebandPatternPerParityIsASetting) {
+  const auto r = RunSpall("identify " + kSample +
+                          " --bearing N205EM --rpm 1200 --json --sideband-pattern-per-parity");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["settings"]["sideband_pattern_per_parity"].get<bool>());
+  EXPECT_EQ(j["defective_rollers"]["count"], 1);
+  const auto base = RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json");
+  ASSERT_EQ(base.code, 0) << base.err;
+  EXPECT_FALSE(
+      nlohmann::json::parse(base.out)["settings"]["sideband_pattern_per_parity"].get<bool>());
+}
+
 // A clipped record: the diagnosis warns, and so does the identification's text report (the
 // clipping distorts the envelope the count and the width are fitted to).
 TEST(IdentifyCli, TextReportCarriesTheRecordWarnings) {
