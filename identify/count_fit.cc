@@ -94,13 +94,9 @@ double Chi2(const CageAverage& avg, const std::vector<double>& model) {
 }
 
 std::vector<double> Model(const CageAverage& avg, const HumpFit& f, int z) {
-  const double bin = 2.0 * kPi / avg.bins();
   std::vector<double> m(avg.bins(), f.floor);
   for (int i = 0; i < avg.bins(); ++i)
-    for (size_t k = 0; k < f.slots.size(); ++k)
-      m[i] += f.amplitudes[k] *
-              SmoothedHump(
-                  avg.BinCenterRad(i) + 2.0 * kPi * f.slots[k] / z - f.theta0_rad, f.shape, bin);
+    for (size_t k = 0; k < f.slots.size(); ++k) m[i] += RollerHump(avg, f, z, k, i);
   return m;
 }
 
@@ -450,6 +446,14 @@ int CountFit::MostProbable() const {
                           probability.begin());
 }
 
+double RollerHump(const CageAverage& average, const HumpFit& fit, int z, size_t roller, int bin) {
+  return fit.amplitudes[roller] *
+         SmoothedHump(
+             average.BinCenterRad(bin) + 2.0 * kPi * fit.slots[roller] / z - fit.theta0_rad,
+             fit.shape,
+             2.0 * kPi / average.bins());
+}
+
 double SmoothedHump(double x, const HumpShape& shape, double bin_rad) {
   return Hump(x,
               shape.exponent,
@@ -563,12 +567,31 @@ double SidebandChi2(const SpinSidebands& sb,
                     const HumpFit& f,
                     int z,
                     int* parameters,
-                    std::vector<double>* spin_phase) {
+                    std::vector<double>* spin_phase,
+                    bool pattern_per_parity) {
   const int k = static_cast<int>(f.slots.size());
   std::vector<double> phase(k, 0.0);
   if (k == 0) {
     *parameters = 0;
     return NoRollerSidebandChi2(sb);
+  }
+  if (pattern_per_parity) {
+    // One complex p_j per harmonic, two patterns of 2M + 1 complex orders (less one complex
+    // scale each, p_j's), K - 1 phases and K - 1 strength ratios; the patterns start from
+    // feature A's hump of this configuration, M_m e^{-i m theta_0}.
+    *parameters = 2 * sb.harmonics + 2 * 2 * (2 * sb.orders + 1) - 2 * 2 + 2 * (k - 1);
+    const std::vector<double> mm = HumpFourier(f.shape, sb.orders);
+    std::vector<std::complex<double>> start(2 * sb.orders + 1);
+    for (int m = -sb.orders; m <= sb.orders; ++m)
+      start[m + sb.orders] = mm[std::abs(m)] * std::polar(1.0, -m * f.theta0_rad);
+    const double c = SearchSpinPhases(
+        k,
+        [&](const std::vector<double>& ph) {
+          return SidebandChi2AtPerParity(sb, f.slots, z, start, ph);
+        },
+        &phase);
+    if (spin_phase) *spin_phase = phase;
+    return c;
   }
   *parameters = 2 * sb.harmonics + 2 * (k - 1) + 1 + 1;
   const int kDeltaSteps = k <= 3 ? 7 : 3;
@@ -614,37 +637,6 @@ double SidebandChi2(const SpinSidebands& sb,
   }
   if (spin_phase) *spin_phase = best_phase;
   return best;
-}
-
-// Feature B's chi2 of a configuration, minimised over the spin phases of rollers 2..K (grid of
-// kPhaseSteps, coordinate sweeps, then a pattern search below the grid step). The cage-angle
-// patterns start from feature A's hump of this configuration, M_m e^{-i m theta_0}.
-// Parameters: one complex p_j per harmonic, two patterns of 2M + 1 complex orders (less one
-// complex scale each, p_j's), K - 1 phases and K - 1 strength ratios.
-double SidebandChi2PerParity(const SpinSidebands& sb,
-                             const HumpFit& f,
-                             int z,
-                             int* parameters,
-                             std::vector<double>* spin_phase) {
-  const int k = static_cast<int>(f.slots.size());
-  std::vector<double> phase(k, 0.0);
-  if (k == 0) {
-    *parameters = 0;
-    return NoRollerSidebandChi2(sb);
-  }
-  *parameters = 2 * sb.harmonics + 2 * 2 * (2 * sb.orders + 1) - 2 * 2 + 2 * (k - 1);
-  const std::vector<double> mm = HumpFourier(f.shape, sb.orders);
-  std::vector<std::complex<double>> start(2 * sb.orders + 1);
-  for (int m = -sb.orders; m <= sb.orders; ++m)
-    start[m + sb.orders] = mm[std::abs(m)] * std::polar(1.0, -m * f.theta0_rad);
-  const double c = SearchSpinPhases(
-      k,
-      [&](const std::vector<double>& ph) {
-        return SidebandChi2AtPerParity(sb, f.slots, z, start, ph);
-      },
-      &phase);
-  if (spin_phase) *spin_phase = phase;
-  return c;
 }
 
 CountFit FitRollerCount(const CageAverage& average,
@@ -698,9 +690,8 @@ CountFit FitRollerCount(const CageAverage& average,
   auto score_b = [&](HumpFit* f) {
     int p = 0;
     if (sb)
-      f->chi2_sidebands = o.sideband_pattern_per_parity
-                              ? SidebandChi2PerParity(*sb, *f, z, &p, &f->spin_phase_rad)
-                              : SidebandChi2(*sb, *f, z, &p, &f->spin_phase_rad);
+      f->chi2_sidebands =
+          SidebandChi2(*sb, *f, z, &p, &f->spin_phase_rad, o.sideband_pattern_per_parity);
     return p;
   };
   auto valid = [&](const HumpFit& f) {

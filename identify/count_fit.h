@@ -159,15 +159,21 @@ CountFit FitRollerCount(const CageAverage& average,
 // H(x) of a shape, smoothed, for a bin of width bin_rad (what the fit uses; exposed for tests).
 double SmoothedHump(double x, const HumpShape& shape, double bin_rad);
 
+// Roller `roller`'s term a_k H(phi_bin - theta_0 + 2 pi s_k / Z) of feature A's model at a bin
+// of the average (the model is the floor plus the sum of these).
+double RollerHump(const CageAverage& average, const HumpFit& fit, int z, size_t roller, int bin);
+
 // Feature B's chi2 of one configuration (its slots, strengths, theta_0 and shape from feature
 // A), minimised over the spin phases, strength ratios, a hump offset and two shapes as described
-// above; *parameters receives its parameter count. Exposed for tests.
+// above (with pattern_per_parity: over the spin phases and strength ratios with the patterns per
+// parity); *parameters receives its parameter count. Exposed for tests.
 // *spin_phase (may be null) receives phi_k (phi_1 = 0).
 double SidebandChi2(const SpinSidebands& sidebands,
                     const HumpFit& fit,
                     int z,
                     int* parameters,
-                    std::vector<double>* spin_phase = nullptr);
+                    std::vector<double>* spin_phase = nullptr,
+                    bool pattern_per_parity = false);
 
 // Fourier coefficients M_m = (1/2 pi) int H(x) cos(m x) dx, m = 0..orders (H without bin width).
 std::vector<double> HumpFourier(const HumpShape& shape, int orders);

@@ -42,14 +42,8 @@ std::vector<char> LoadZoneSamples(const HumpFit& fit,
   } else {
     const size_t k_count = fit.slots.size();
     std::vector<std::vector<double>> hump(k_count, std::vector<double>(bins));
-    const double bin_rad = 2.0 * kPi / bins;
     for (size_t k = 0; k < k_count; ++k)
-      for (int b = 0; b < bins; ++b)
-        hump[k][b] =
-            fit.amplitudes[k] *
-            SmoothedHump(average.BinCenterRad(b) + 2.0 * kPi * fit.slots[k] / z - fit.theta0_rad,
-                         fit.shape,
-                         bin_rad);
+      for (int b = 0; b < bins; ++b) hump[k][b] = RollerHump(average, fit, z, k, b);
     for (size_t k = 0; k < k_count; ++k) {
       const double peak = *std::max_element(hump[k].begin(), hump[k].end());
       for (int b = 0; b < bins; ++b) {
@@ -336,7 +330,7 @@ Identification Identify(const Record& record,
                                                         sew.size(),
                                                         options.width_exclusive_ratio,
                                                         lookahead);
-    // The same pair, judged without the bootstrap (its interval is needed only when it is).
+    // The same pair, judged before its bootstrap (its interval is needed only when it is).
     WidthFitOptions quick = wo;
     quick.bootstrap = 0;
     id.width_fit_exclusive = FitEntryExit(sew, fs, exclusive, block, quick);
@@ -345,7 +339,8 @@ Identification Identify(const Record& record,
         std::abs(x.best.delay_s - id.width_fit.best.delay_s) < options.cross_lag_half_width_s &&
         x.delay_power_significance >= options.min_delay_significance &&
         x.best.PairPowerRatio() >= options.width_exclusive_min_pair_power_ratio) {
-      id.width_fit = id.width_fit_exclusive = FitEntryExit(sew, fs, exclusive, block, wo);
+      AddDelayInterval(wo, &id.width_fit_exclusive);
+      id.width_fit = id.width_fit_exclusive;
       id.width_from_exclusive_zone = true;
     }
   }

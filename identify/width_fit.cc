@@ -347,6 +347,23 @@ EnvelopeCorrelation CorrelateInZone(std::span<const double> se,
   return r;
 }
 
+namespace {
+
+// The fit's bounds for a record sampled at rate_hz.
+Bounds BoundsOf(const WidthFitOptions& o, double rate_hz) {
+  Bounds bd;
+  bd.min_delay = o.min_delay_s > 0 ? o.min_delay_s : 2.0 / rate_hz;
+  bd.max_delay = o.max_delay_s;
+  bd.min_rise = 0.5 / rate_hz;
+  bd.max_rise = 0.6e-3;
+  bd.min_decay = 0.5 / rate_hz;
+  bd.max_decay = 3.0e-3;
+  bd.noise_correlation = std::max(o.noise_correlation_s, 0.5 / rate_hz);
+  return bd;
+}
+
+}  // namespace
+
 WidthFit FitEntryExit(std::span<const double> se,
                       double rate_hz,
                       const std::vector<char>& in_zone,
@@ -366,20 +383,30 @@ WidthFit FitEntryExit(std::span<const double> se,
     out.message = "only " + std::to_string(out.blocks) + " cage revolutions with load-zone samples";
     return out;
   }
-  Bounds bd;
-  bd.min_delay = o.min_delay_s > 0 ? o.min_delay_s : 2.0 / rate_hz;
-  bd.max_delay = o.max_delay_s;
-  bd.min_rise = 0.5 / rate_hz;
-  bd.max_rise = 0.6e-3;
-  bd.min_decay = 0.5 / rate_hz;
-  bd.max_decay = 3.0e-3;
-  bd.noise_correlation = std::max(o.noise_correlation_s, 0.5 / rate_hz);
+  const Bounds bd = BoundsOf(o, rate_hz);
   out.best = Fit(out.correlation, lags, bd, nullptr, o.delay_grid, &out.delay_standard_error_s);
   out.usable = true;
+  out.delay_low_s = out.delay_high_s = out.best.delay_s;
+  // Significance of the second event: the likelihood-ratio statistic against no second event,
+  // in units of the best fit's reduced chi2 and of the lags' correlation length (R is smooth
+  // over about 2 rise times, so neighbouring lags are not independent).
+  const double chi2_0 = NullChi2(out.correlation, lags, bd, out.best);
+  const double scale = std::max(1.0, out.best.chi2 / std::max(1, lags - 8));
+  const double corr = std::max(1.0, 2.0 * out.best.rise_s * rate_hz);
+  out.delay_power_significance = std::sqrt(std::max(0.0, chi2_0 - out.best.chi2) / (scale * corr));
+  AddDelayInterval(o, &out);
+  return out;
+}
 
+void AddDelayInterval(const WidthFitOptions& o, WidthFit* fit) {
+  WidthFit& out = *fit;
+  if (!out.usable || o.bootstrap < 10) return;
+  const double rate_hz = out.correlation.rate_hz;
+  const int lags = static_cast<int>(out.correlation.mean.size());
+  const Bounds bd = BoundsOf(o, rate_hz);
   std::mt19937_64 rng(o.seed);
   std::uniform_int_distribution<int> pick(0, out.blocks - 1);
-  std::vector<double> delays, powers;
+  std::vector<double> delays;
   EnvelopeCorrelation resample = out.correlation;
   for (int b = 0; b < o.bootstrap; ++b) {
     std::vector<int> use(out.blocks);
@@ -388,39 +415,25 @@ WidthFit FitEntryExit(std::span<const double> se,
     // From the best fit and from the grid's best: a resample may sit in another basin.
     EntryExitFit f = Fit(resample, lags, bd, &out.best, o.delay_grid, nullptr, 20);
     delays.push_back(f.delay_s);
-    powers.push_back(f.delay_power);
   }
-  if (delays.size() >= 10) {
-    std::sort(delays.begin(), delays.end());
-    auto q = [&](double p) {
-      const double x = p * (delays.size() - 1);
-      const size_t i = static_cast<size_t>(x);
-      return i + 1 < delays.size() ? delays[i] + (x - i) * (delays[i + 1] - delays[i]) : delays[i];
-    };
-    // Percentiles of a block bootstrap with few blocks are too narrow (the resamples hold fewer
-    // distinct blocks than the record): the interval is also at least +/- t(0.95, n-1) times
-    // the bootstrap standard deviation corrected by n / (n - 1).
-    double m = 0, m2 = 0;
-    for (double v : delays) m += v, m2 += v * v;
-    m /= delays.size();
-    const double sd = std::sqrt(std::max(0.0, m2 / delays.size() - m * m));
-    const double nb = out.blocks;
-    const double t95 = nb >= 31 ? 1.70 : 1.645 + 2.0 / (nb - 1.0);  // one-sided 95 % of t
-    const double half = t95 * sd * std::sqrt(nb / (nb - 1.0));
-    out.delay_low_s = std::max(bd.min_delay, std::min(q(0.05), out.best.delay_s - half));
-    out.delay_high_s = std::min(bd.max_delay, std::max(q(0.95), out.best.delay_s + half));
-    (void)powers;
-  } else {
-    out.delay_low_s = out.delay_high_s = out.best.delay_s;
-  }
-  // Significance of the second event: the likelihood-ratio statistic against no second event,
-  // in units of the best fit's reduced chi2 and of the lags' correlation length (R is smooth
-  // over about 2 rise times, so neighbouring lags are not independent).
-  const double chi2_0 = NullChi2(out.correlation, lags, bd, out.best);
-  const double scale = std::max(1.0, out.best.chi2 / std::max(1, lags - 8));
-  const double corr = std::max(1.0, 2.0 * out.best.rise_s * rate_hz);
-  out.delay_power_significance = std::sqrt(std::max(0.0, chi2_0 - out.best.chi2) / (scale * corr));
-  return out;
+  std::sort(delays.begin(), delays.end());
+  auto q = [&](double p) {
+    const double x = p * (delays.size() - 1);
+    const size_t i = static_cast<size_t>(x);
+    return i + 1 < delays.size() ? delays[i] + (x - i) * (delays[i + 1] - delays[i]) : delays[i];
+  };
+  // Percentiles of a block bootstrap with few blocks are too narrow (the resamples hold fewer
+  // distinct blocks than the record): the interval is also at least +/- t(0.95, n-1) times
+  // the bootstrap standard deviation corrected by n / (n - 1).
+  double m = 0, m2 = 0;
+  for (double v : delays) m += v, m2 += v * v;
+  m /= delays.size();
+  const double sd = std::sqrt(std::max(0.0, m2 / delays.size() - m * m));
+  const double nb = out.blocks;
+  const double t95 = nb >= 31 ? 1.70 : 1.645 + 2.0 / (nb - 1.0);  // one-sided 95 % of t
+  const double half = t95 * sd * std::sqrt(nb / (nb - 1.0));
+  out.delay_low_s = std::max(bd.min_delay, std::min(q(0.05), out.best.delay_s - half));
+  out.delay_high_s = std::min(bd.max_delay, std::max(q(0.95), out.best.delay_s + half));
 }
 
 }  // namespace spallkit::identify

@@ -44,7 +44,7 @@ struct WidthFitOptions {
   double max_delay_s = 2.5e-3;
   double tail_s = 1.5e-3;  // lags fitted beyond max_delay_s
   int delay_grid = 80;
-  int bootstrap = 200;  // resamples for the interval (< 10: none, the interval is the estimate)
+  int bootstrap = 200;  // resamples for the delay's interval (< 10: none; AddDelayInterval)
   int min_blocks = 3;   // blocks (cage revolutions) with load-zone samples
   // Correlation time of the band's noise (about 1 / band width; the Gaussian peak P_n at tau = 0
   // takes it); 0: one sample (white).
@@ -109,11 +109,17 @@ struct WidthFit {
 double EventShape(double tau_s, double rise_s, double decay_s);
 double SymmetricEventShape(double tau_s, double rise_s, double decay_s);
 
-// Fits the model to the load-zone autocorrelation of se (blocks of block_samples).
+// Fits the model to the load-zone autocorrelation of se (blocks of block_samples), with the
+// delay's bootstrap interval (AddDelayInterval).
 WidthFit FitEntryExit(std::span<const double> se,
                       double rate_hz,
                       const std::vector<char>& in_zone,
                       int block_samples,
                       const WidthFitOptions& options);
+
+// The 90 % bootstrap interval of a usable fit's delay (options.bootstrap resamples of its blocks,
+// none below 10: the interval is then the estimate). FitEntryExit does it; a caller that fitted
+// with bootstrap < 10 to judge the fit first can add it afterwards, with the same result.
+void AddDelayInterval(const WidthFitOptions& options, WidthFit* fit);
 
 }  // namespace spallkit::identify
