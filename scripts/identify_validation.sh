@@ -8,7 +8,10 @@
 #   bash scripts/identify_validation.sh [OUT_DIR]      (default runs/identify)
 #
 # Extra `spall identify-check` options pass through SPALLKIT_CHECK_ARGS, e.g.
-# SPALLKIT_CHECK_ARGS="--width-max-count 1". About 8 min of generation and 5 min of checks on
+# SPALLKIT_CHECK_ARGS="--width-max-count 1". SPALLKIT_LUBRICATED=1 makes the sets with the
+# main job's lubricant traction law and film on the races instead of the sets' dry Coulomb
+# 0.15 / 0.12 (pockets at the scene's 0.01 / 0.005; docs/IDENTIFY.md, "Sets with lubricant
+# traction"): the sweep files are copied to OUT with that change. About 8 min of generation and 5 min of checks on
 # 2 cores. Uses build/apps/spall (SPALLKIT_SPALL overrides).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,7 +22,18 @@ WORKERS=$(nproc)
 mkdir -p "$OUT"
 for set in $SETS; do
   echo "== generate identify-$set ($OUT/$set)" >&2
-  "$SPALL" dataset run "datasets/sweeps/identify-$set.toml" --out "$OUT/$set" \
+  sweep="datasets/sweeps/identify-$set.toml"
+  if [ "${SPALLKIT_LUBRICATED:-0}" = 1 ]; then
+    # The copy names the scene by its absolute path (the sweep's is relative to the sweep).
+    lubricated="$OUT/identify-$set-lubricated.toml"
+    sed -e "s|^scene = \"\.\./scenes/|scene = \"$PWD/datasets/scenes/|" \
+      -e '/^"friction.mu_static" = 0.15$/d' \
+      -e 's|^"friction.mu_dynamic" = 0.12$|"friction.model" = "ehl"|' "$sweep" >"$lubricated"
+    grep -q '^"friction.model" = "ehl"$' "$lubricated" ||
+      { echo "identify_validation.sh: $sweep has no friction lines to replace" >&2; exit 2; }
+    sweep="$lubricated"
+  fi
+  "$SPALL" dataset run "$sweep" --out "$OUT/$set" \
     --workers "$WORKERS" >"$OUT/$set.generate.txt"
 done
 for set in $SETS; do
