@@ -6,7 +6,9 @@
 #      adapter) on a coarse 2 mm housing mesh, 1 s: out/run.h5 (+ out/run.csv);
 #   2. `spall diagnose` on the simulated acceleration from 0.05 s on (past the start-up):
 #      out/report.txt, out/report.json, out/plots/*.png;
-#   3. the same diagnosis of the bundled sample record: out/sample_report.txt/.json.
+#   3. `spall identify` on the same record (number of spalled rollers, positions, width or why
+#      not): out/identify.txt, out/identify.json;
+#   4. the same diagnosis of the bundled sample record: out/sample_report.txt/.json.
 # SPALLKIT_SIM_SETS overrides the simulation settings (e.g. a finer mesh or longer run);
 # SPALLKIT_SPALL=path/to/spall runs the pipeline with an already built binary (no install, no
 # build: for checking the job from one's own build folder); SPALLKIT_OUT sets the folder.
@@ -40,10 +42,17 @@ echo "== diagnose $OUT/run.csv from $FROM s (N205EM, $RPM rpm)"
 "$SPALL" diagnose "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --from-s $FROM --plot-dir "$OUT/plots" |
   tee "$OUT/report.txt"
 "$SPALL" diagnose "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --from-s $FROM --json > "$OUT/report.json"
+# How many rollers are spalled and how wide (docs/IDENTIFY.md), with the scene's radial load.
+LOAD_N=10000
+echo "== identify $OUT/run.csv from $FROM s (N205EM, $RPM rpm, $LOAD_N N)"
+"$SPALL" identify "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --from-s $FROM --load-n $LOAD_N |
+  tee "$OUT/identify.txt"
+"$SPALL" identify "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --from-s $FROM --load-n $LOAD_N \
+  --json > "$OUT/identify.json"
 
 RECORD=datasets/samples/n205em_roller_defect_1200rpm.csv
 echo "== diagnose $RECORD (N205EM, 1200 rpm)"
 "$SPALL" diagnose "$RECORD" --bearing N205EM --rpm 1200 | tee "$OUT/sample_report.txt"
 "$SPALL" diagnose "$RECORD" --bearing N205EM --rpm 1200 --json > "$OUT/sample_report.json"
-echo "== wrote $OUT/run.h5, $OUT/report.txt, $OUT/report.json, $OUT/sample_report.* and $OUT/plots/"
+echo "== wrote $OUT/run.h5, $OUT/report.txt, $OUT/report.json, $OUT/identify.*, $OUT/sample_report.* and $OUT/plots/"
 ls "$OUT/plots"
