@@ -125,15 +125,25 @@ void ResolveAxes(const LinePlot& plot, Axis* x_axis, Axis* y_axis) {
                        s.label + "') has " + std::to_string(s.x.size()) + " x values and " +
                        std::to_string(s.y.size()) + " y values");
     }
+    if (!s.y_error.empty() && s.y_error.size() != s.y.size()) {
+      throw InputError("line plot '" + plot.title + "': series " + std::to_string(k) + " ('" +
+                       s.label + "') has " + std::to_string(s.y_error.size()) + " error bars and " +
+                       std::to_string(s.y.size()) + " y values");
+    }
     for (size_t i = 0; i < s.y.size(); ++i) {
       const double x = s.x.empty() ? static_cast<double>(i) : s.x[i];
       const double y = s.y[i];
       if (!std::isfinite(x) || !std::isfinite(y)) continue;
       any_point = true;
       xr.Add(x);
-      yr.Add(y);
       if (y > 0) ypos.Add(y);
       if (x > 0) xpos.Add(x);
+      // The bars are part of the data range (a log axis keeps the positive ends only).
+      const double e = s.y_error.empty() ? 0.0 : s.y_error[i];
+      for (const double v : {y - (std::isfinite(e) ? e : 0.0), y + (std::isfinite(e) ? e : 0.0)}) {
+        yr.Add(v);
+        if (v > 0) ypos.Add(v);
+      }
     }
   }
   if (!any_point) throw InputError("line plot '" + plot.title + "': no finite data point");
@@ -282,6 +292,38 @@ std::vector<cv::Rect> DrawMarkers(cv::Mat& inner,
   return label_boxes;
 }
 
+// LineSeries::y_error: a vertical bar with caps and a dot at each point that has one.
+void DrawErrorBars(
+    cv::Mat& inner, const LineSeries& s, int thickness, const Axis& ax_in, const Axis& ay_in) {
+  auto at = [](double px, double py) {
+    return cv::Point(static_cast<int>(std::lround(px * kSubpixel)),
+                     static_cast<int>(std::lround(py * kSubpixel)));
+  };
+  const double cap = 4.0 * thickness;  // half width, pixels
+  for (size_t i = 0; i < s.y_error.size(); ++i) {
+    const double x = s.x.empty() ? static_cast<double>(i) : s.x[i];
+    const double y = s.y[i], e = s.y_error[i];
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(e) || !(e > 0) ||
+        (ax_in.log && !(x > 0)))
+      continue;
+    const double lo = ay_in.log ? std::max(y - e, y * 1e-6) : y - e;  // a log axis's bar ends > 0
+    if (ay_in.log && !(y > 0)) continue;
+    const double px = ax_in.ToPixel(x), top = ay_in.ToPixel(y + e), bottom = ay_in.ToPixel(lo);
+    const int w = std::max(1, thickness / 2);
+    cv::line(inner, at(px, top), at(px, bottom), Bgr(s.color), w, cv::LINE_AA, kShift);
+    cv::line(inner, at(px - cap, top), at(px + cap, top), Bgr(s.color), w, cv::LINE_AA, kShift);
+    cv::line(
+        inner, at(px - cap, bottom), at(px + cap, bottom), Bgr(s.color), w, cv::LINE_AA, kShift);
+    cv::circle(inner,
+               at(px, ay_in.ToPixel(y)),
+               2 * thickness * static_cast<int>(kSubpixel),
+               Bgr(s.color),
+               -1,
+               cv::LINE_AA,
+               kShift);
+  }
+}
+
 void DrawSeries(
     cv::Mat& inner, const LinePlot& plot, const Style& st, const Axis& ax_in, const Axis& ay_in) {
   for (const LineSeries& s : plot.series) {
@@ -313,6 +355,7 @@ void DrawSeries(
       }
       continue;
     }
+    DrawErrorBars(inner, s, thickness, ax_in, ay_in);
     for (const auto& line : SeriesPolylines(s, ax_in, ay_in)) {
       if (line.size() == 1) {
         cv::circle(inner,

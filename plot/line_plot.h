@@ -19,6 +19,9 @@ struct LineSeries {
   // each labelled with point_labels[i] when given (right of the dot).
   bool points = false;
   std::vector<std::string> point_labels;
+  // Empty, or one value per point: a vertical bar of +/- y_error[i] with caps and a dot at the
+  // point (the spread of the cases a trend's point averages); 0 or NaN draws none there.
+  std::vector<double> y_error;
 };
 
 // A vertical line at x with a small label (fault-family lines k*f_b, sidebands, band edges).

@@ -203,8 +203,8 @@ PlottedSeries PlotStudyFromIndex(const std::string& dir,
       if (k != o.x) group.push_back(k.get<std::string>());
   }
 
-  // group -> x -> (sum of y, cases)
-  std::map<std::string, std::map<double, std::pair<double, int>>> points;
+  // group -> x -> the cases' y values (averaged into one point; their spread is its error bar)
+  std::map<std::string, std::map<double, std::vector<double>>> points;
   bool x_seen = false, y_seen = false;
   for (const auto& c : index["cases"]) {
     if (c.value("status", "") != "ok") continue;
@@ -232,9 +232,7 @@ PlottedSeries PlotStudyFromIndex(const std::string& dir,
       if (!g.empty()) g += ", ";
       g += k + " = " + Describe(Field(c, k));
     }
-    auto& p = points[g][xv->get<double>()];
-    p.first += y;
-    p.second += 1;
+    points[g][xv->get<double>()].push_back(y);
   }
   if (!x_seen)
     throw InputError("plot study: --x " + o.x + ": no such parameter or label in " +
@@ -263,9 +261,9 @@ PlottedSeries PlotStudyFromIndex(const std::string& dir,
   p.y_label = y_label;
   PlottedSeries out;
   out.x_name = o.x;
-  std::vector<double> ys, groups, counts;
+  std::vector<double> ys, groups, counts, stds;
   std::ostringstream csv;
-  csv << "group," << o.x << "," << o.y << ",cases\n";
+  csv << "group," << o.x << "," << o.y << ",cases,std\n";
   size_t gi = 0;
   for (const auto& [g, xs] : points) {
     std::string quoted_group = "\"";  // a CSV cell: quotes doubled (string values carry quotes)
@@ -275,21 +273,28 @@ PlottedSeries PlotStudyFromIndex(const std::string& dir,
     s.label = g.empty() ? o.y : g;
     s.color = plot::PaletteColor(gi);
     s.thickness = 2.0;
-    for (const auto& [x, sum] : xs) {
-      const double y = sum.first / sum.second;
+    for (const auto& [x, values] : xs) {
+      const double n = static_cast<double>(values.size());
+      double y = 0, ss = 0;
+      for (double v : values) y += v / n;
+      for (double v : values) ss += (v - y) * (v - y);
+      // Sample standard deviation of the cases (0 for one case: no bar).
+      const double sd = values.size() > 1 ? std::sqrt(ss / (n - 1)) : 0.0;
       s.x.push_back(x);
       s.y.push_back(y);
+      s.y_error.push_back(sd);
       out.x.push_back(x);
       ys.push_back(y);
       groups.push_back(static_cast<double>(gi));
-      counts.push_back(sum.second);
-      csv << quoted_group << "," << TomlValueText(x) << "," << TomlValueText(y) << "," << sum.second
-          << "\n";
+      counts.push_back(n);
+      stds.push_back(sd);
+      csv << quoted_group << "," << TomlValueText(x) << "," << TomlValueText(y) << ","
+          << values.size() << "," << TomlValueText(sd) << "\n";
     }
     p.series.push_back(std::move(s));
     ++gi;
   }
-  out.columns = {{o.y, ys}, {"group", groups}, {"cases", counts}};
+  out.columns = {{o.y, ys}, {"group", groups}, {"cases", counts}, {"std", stds}};
   p.legend = points.size() > 1 || !points.begin()->first.empty();
   // One x (or one y) value would make an empty axis range: widen it.
   const auto [x_lo, x_hi] = std::minmax_element(out.x.begin(), out.x.end());

@@ -17,7 +17,8 @@
 //     the sliding measures are averaged over them; healthy cases have no value)
 //   rms:/PATH        RMS of any dataset (mean kept)
 // Groups: the cases with equal values of the `group` keys (default: every other [grid] key);
-// cases of one group with equal x (random draws) are averaged into one point.
+// cases of one group with equal x (random draws, starts) are averaged into one point, drawn with
+// a bar of +/- their sample standard deviation.
 #pragma once
 
 #include <string>
@@ -39,8 +40,9 @@ struct StudyPlotOptions {
 std::vector<std::string> StudyQuantities();
 
 // Reads DIR/index.json and the case files (status ok only), plots to `png_path` and, when
-// csv_path is not empty, writes one row per point (group, x, y, cases averaged). Throws
-// InputError for a folder without an index, an unknown x or y, or no numeric point.
+// csv_path is not empty, writes one row per point (group, x, y, cases averaged, their sample
+// standard deviation: 0 for one case). Throws InputError for a folder without an index, an
+// unknown x or y, or no numeric point.
 PlottedSeries PlotStudy(const std::string& dir,
                         const StudyPlotOptions& options,
                         const std::string& png_path,

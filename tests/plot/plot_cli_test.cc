@@ -5,10 +5,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -120,9 +122,32 @@ TEST(PlotCliTest, StudyOfADatasetFolderHasOneLinePerGroup) {
   std::vector<std::string> lines;
   for (std::string l; std::getline(in, l);) lines.push_back(l);
   ASSERT_EQ(lines.size(), 7u);  // header + 2 speeds x 3 widths
-  EXPECT_EQ(lines[0], "group,defects.0.width_mm,accel_rms,cases");
+  EXPECT_EQ(lines[0], "group,defects.0.width_mm,accel_rms,cases,std");
   EXPECT_EQ(lines[1].rfind("\"operation.speed_rpm = 1000.0\",0.8,", 0), 0u) << lines[1];
   EXPECT_EQ(lines[6].rfind("\"operation.speed_rpm = 2000.0\",2.2,", 0), 0u) << lines[6];
+  // One line: each width's point averages the two speeds, its std their sample deviation.
+  const auto one = RunSpall("plot study " + dir + "/ds --x defects.0.width_mm --y accel_rms " +
+                            "--one-line -o " + dir + "/one.png --csv " + dir + "/one.csv");
+  ASSERT_EQ(one.code, 0) << one.err;
+  auto cells = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream ss(line.substr(line.rfind('"') + 2));  // after the quoted group
+    for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
+    return out;  // x, y, cases, std
+  };
+  std::ifstream one_in(dir + "/one.csv");
+  std::vector<std::string> one_lines;
+  for (std::string l; std::getline(one_in, l);) one_lines.push_back(l);
+  ASSERT_EQ(one_lines.size(), 4u);  // header + 3 widths
+  for (int w = 0; w < 3; ++w) {
+    const auto a = cells(lines[1 + w]), b = cells(lines[4 + w]), m = cells(one_lines[1 + w]);
+    ASSERT_EQ(m.size(), 4u) << one_lines[1 + w];
+    const double ya = std::stod(a[1]), yb = std::stod(b[1]);
+    EXPECT_EQ(m[2], "2");
+    EXPECT_NEAR(std::stod(m[1]), 0.5 * (ya + yb), 1e-9 * std::abs(ya + yb));
+    EXPECT_NEAR(std::stod(m[3]), std::abs(ya - yb) / std::sqrt(2.0), 1e-9 * std::abs(ya + yb));
+    EXPECT_EQ(cells(lines[1 + w])[3], "0.0");  // one case: no spread
+  }
   // A label on y, cage quantity, and an unknown quantity.
   EXPECT_EQ(RunSpall("plot study " + dir + "/ds --x speed_rpm --y f_b_hz --one-line -o " + dir +
                      "/fb.png")

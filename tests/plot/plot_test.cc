@@ -271,6 +271,48 @@ TEST_F(PlotTest, ScatterOnLogAxesSpacesDecadesEqually) {
   EXPECT_THROW(RenderLinePlotPng(plot), InputError);
 }
 
+TEST_F(PlotTest, ErrorBarsSpanTheirPointsSpreadAndAreInTheRange) {
+  LinePlot plot;
+  plot.title = "trend";
+  plot.legend = false;
+  plot.width = 800;
+  plot.height = 600;
+  LineSeries s;
+  s.color = PaletteColor(1);
+  s.x = {0.0, 1.0, 2.0};
+  s.y = {1.0, 1.0, 1.0};
+  s.y_error = {0.5, 0.0, NAN};  // a bar on the first point only
+  plot.series.push_back(s);
+  LineSeries floor;  // a second line at 0: the data span [0, 1]
+  floor.color = PaletteColor(2);
+  floor.x = s.x;
+  floor.y = {0.0, 0.0, 0.0};
+  plot.series.push_back(floor);
+  const cv::Mat img = cv::imdecode(RenderLinePlotPng(plot), cv::IMREAD_COLOR);
+  // First and last rows holding the first series' colour in a band of columns.
+  auto rows_with_colour = [&](int c0, int c1) {
+    int lo = img.rows, hi = -1;
+    const Rgb k = PaletteColor(1);
+    for (int r = 0; r < img.rows; ++r)
+      for (int c = c0; c < c1; ++c) {
+        const cv::Vec3b p = img.at<cv::Vec3b>(r, c);
+        if (std::abs(p[2] - k.r) < 30 && std::abs(p[1] - k.g) < 30 && std::abs(p[0] - k.b) < 30)
+          lo = std::min(lo, r), hi = std::max(hi, r);
+      }
+    return std::make_pair(lo, hi);
+  };
+  // The bar (1 +/- 0.5) spans a good part of the plot's height; the line elsewhere is a few
+  // pixels thick, and the range reaches the bar's top (1.5), so the line at 1 sits a third of
+  // the way down instead of at the top (5 % headroom above the data's 1).
+  const auto bar = rows_with_colour(0, img.cols / 3);
+  const auto line = rows_with_colour(img.cols * 2 / 3, img.cols);
+  EXPECT_GT(bar.second - bar.first, img.rows / 4);
+  EXPECT_LT(line.second - line.first, 12);
+  EXPECT_GT(line.first, img.rows / 4);
+  plot.series[0].y_error = {0.5, 0.5};  // one bar fewer than points
+  EXPECT_THROW(RenderLinePlotPng(plot), InputError);
+}
+
 TEST_F(PlotTest, LinePlotBadInputsThrowInputError) {
   LinePlot plot = EnvelopeSpectrumPlot();
   EXPECT_THROW(WriteLinePlot(Path("no/such/dir/x.png"), plot), InputError);
