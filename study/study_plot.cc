@@ -296,11 +296,22 @@ PlottedSeries PlotStudyFromIndex(const std::string& dir,
   }
   out.columns = {{o.y, ys}, {"group", groups}, {"cases", counts}, {"std", stds}};
   p.legend = points.size() > 1 || !points.begin()->first.empty();
-  // One x (or one y) value would make an empty axis range: widen it.
+  // One x (or one y) value would make an empty axis range: widen it. Otherwise the points at
+  // the ends keep their whole error bar and dot inside the frame.
   const auto [x_lo, x_hi] = std::minmax_element(out.x.begin(), out.x.end());
-  if (*x_lo == *x_hi) p.x_min = *x_lo - 0.5 - 0.1 * std::abs(*x_lo), p.x_max = 2 * *x_lo - p.x_min;
+  if (*x_lo == *x_hi) {
+    p.x_min = *x_lo - 0.5 - 0.1 * std::abs(*x_lo);
+    p.x_max = 2 * *x_lo - p.x_min;
+  } else {
+    p.x_min = *x_lo - 0.04 * (*x_hi - *x_lo);
+    p.x_max = *x_hi + 0.04 * (*x_hi - *x_lo);
+  }
   const auto [y_lo, y_hi] = std::minmax_element(ys.begin(), ys.end());
-  if (*y_lo == *y_hi) p.y_min = *y_lo - 0.5 - 0.1 * std::abs(*y_lo), p.y_max = 2 * *y_lo - p.y_min;
+  const bool bars = std::any_of(stds.begin(), stds.end(), [](double sd) { return sd > 0; });
+  if (*y_lo == *y_hi && !bars) {
+    p.y_min = *y_lo - 0.5 - 0.1 * std::abs(*y_lo);
+    p.y_max = 2 * *y_lo - p.y_min;
+  }
   plot::WriteLinePlot(png_path, p);
   if (!csv_path.empty()) WriteFileAtomically(csv_path, csv.str());
   return out;
