@@ -7,6 +7,7 @@ the per-K log evidences that `spall identify-check --csv` writes.
     spall identify-check runs/identify/tune --channel /signals/accel_z --sensor-angle-deg 90 \\
         --snr-db inf,10,0 --csv tune.csv
     python3 scripts/choose_temperatures.py tune.csv [--check report.csv] [--max-confident-wrong 0]
+    python3 scripts/choose_temperatures.py --ranks tune.csv report.csv ...
 
 --check prints the same score on another set (e.g. the report set) at the chosen pair and at
 the current defaults, without using it for the choice. Needs numpy.
@@ -65,6 +66,22 @@ def confident_wrong(rows, t_a, t_b, level=0.99):
     return n
 
 
+def first_ranked(rows, t_a, t_b, level=0.6):
+    """Records whose most probable count is the true one: feature A alone, B alone, both at
+    (t_a, t_b) per K; and of both, the right / wrong ones at P >= level."""
+    a_right = b_right = both_right = sure_right = sure_wrong = 0
+    for k, a, b in rows:
+        a_right += int(np.argmax(np.where(np.isfinite(a), a, -np.inf))) == k
+        b_right += int(np.argmax(np.where(np.isfinite(b), b, -np.inf))) == k
+        lp = log_probabilities(a, b, t_a, t_b)
+        best = int(np.argmax(np.where(np.isfinite(lp), lp, -np.inf)))
+        both_right += best == k
+        if math.exp(lp[best]) >= level:
+            sure_right += best == k
+            sure_wrong += best != k
+    return a_right, b_right, both_right, sure_right, sure_wrong
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("tune_csv")
@@ -72,7 +89,20 @@ def main():
     p.add_argument("--max-confident-wrong", type=int, default=None,
                    help="only pairs with at most this many wrong counts at P >= 0.99 on the "
                         "tuning set (the defaults: 0)")
+    p.add_argument("--ranks", action="store_true",
+                   help="instead of choosing: for each CSV, how often the most probable count is "
+                        "the true one (feature A alone, B alone, both at the current temperatures) "
+                        "and how many of both's are right / wrong at P >= 0.6")
+    p.add_argument("more_csv", nargs="*", help="with --ranks: further CSV files")
     args = p.parse_args()
+    if args.ranks:
+        print("file: records with a roller signature; most probable count right with A alone, "
+              "B alone, both; both at P >= 0.6 right / wrong")
+        for path in [args.tune_csv] + args.more_csv:
+            rows = load(path)
+            a, b, both, right, wrong = first_ranked(rows, *CURRENT)
+            print(f"{path}: {len(rows)}; {a}, {b}, {both}; {right} / {wrong}")
+        return
     tune = load(args.tune_csv)
     pairs = [(a, b) for a in GRID for b in GRID]
     if args.max_confident_wrong is not None:
