@@ -304,10 +304,9 @@ void DrawErrorBars(
     const double x = s.x.empty() ? static_cast<double>(i) : s.x[i];
     const double y = s.y[i], e = s.y_error[i];
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(e) || !(e > 0) ||
-        (ax_in.log && !(x > 0)))
+        (ax_in.log && !(x > 0)) || (ay_in.log && !(y > 0)))
       continue;
     const double lo = ay_in.log ? std::max(y - e, y * 1e-6) : y - e;  // a log axis's bar ends > 0
-    if (ay_in.log && !(y > 0)) continue;
     const double px = ax_in.ToPixel(x), top = ay_in.ToPixel(y + e), bottom = ay_in.ToPixel(lo);
     const int w = std::max(1, thickness / 2);
     cv::line(inner, at(px, top), at(px, bottom), Bgr(s.color), w, cv::LINE_AA, kShift);

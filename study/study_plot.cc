@@ -275,8 +275,9 @@ PlottedSeries PlotStudyFromIndex(const std::string& dir,
     s.thickness = 2.0;
     for (const auto& [x, values] : xs) {
       const double n = static_cast<double>(values.size());
-      double y = 0, ss = 0;
-      for (double v : values) y += v / n;
+      double sum = 0, ss = 0;
+      for (double v : values) sum += v;
+      const double y = sum / n;
       for (double v : values) ss += (v - y) * (v - y);
       // Sample standard deviation of the cases (0 for one case: no bar).
       const double sd = values.size() > 1 ? std::sqrt(ss / (n - 1)) : 0.0;
