@@ -23,6 +23,7 @@ struct IdentifyStatementOptions {
   std::vector<double> temperatures;
   CLI::Option* temperatures_option = nullptr;
   bool pattern_per_parity = false;
+  bool width_needs_count = false;
 
   void Add(CLI::App& sub) {
     probability_option =
@@ -49,6 +50,10 @@ struct IdentifyStatementOptions {
                  pattern_per_parity,
                  "the count's sideband feature with one cage-angle pattern for the odd and one for "
                  "the even spin harmonics (measured, not the default: docs/IDENTIFY.md)");
+    sub.add_flag("--width-needs-count",
+                 width_needs_count,
+                 "state the width only with a stated count (by default also when every likely "
+                 "count's configuration gives the same entry-exit pair: docs/IDENTIFY.md)");
   }
 
   // Throws InputError naming the option when a given value is out of range. The ranges are the
@@ -80,6 +85,7 @@ struct IdentifyStatementOptions {
               t->count.temperature_sidebands = temperatures[1];
             });
     if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
+    if (width_needs_count) o->width_over_uncertain_count = false;
   }
 };
 

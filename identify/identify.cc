@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -92,6 +93,10 @@ bool IdentifyOptions::IsValid(std::string* error) const {
   if (!(width_calibration_relative_sd >= 0 && width_calibration_relative_sd < 0.5))
     return fail("identify: width calibration scatter must be in [0, 0.5)");
   if (width_max_count < 1) return fail("identify: width_max_count must be >= 1");
+  if (!(width_count_min_probability > 0 && width_count_min_probability < 1))
+    return fail("identify: width_count_min_probability must be in (0, 1)");
+  if (!(width_count_mass > 0 && width_count_mass <= 1))
+    return fail("identify: width_count_mass must be in (0, 1]");
   if (!(min_delay_significance >= 0)) return fail("identify: min_delay_significance must be >= 0");
   if (!(max_width_relative_half_interval > 0))
     return fail("identify: max_width_relative_half_interval must be > 0");
@@ -259,7 +264,7 @@ Identification Identify(const Record& record,
     id.reasons.push_back(depth_reason);
     return id;
   };
-  if (!id.count_identifiable) {
+  if (!id.count_identifiable && !options.width_over_uncertain_count) {
     // Other defective rollers' impacts fall at lags the width fit would take for an entry; only a
     // known configuration (its spin phases) says which lags to leave out.
     width_reason =
@@ -267,7 +272,7 @@ Identification Identify(const Record& record,
         "for entry events)";
     return finish();
   }
-  if (id.count > options.width_max_count) {
+  if (id.count_identifiable && id.count > options.width_max_count) {
     width_reason = "width: not identifiable (" + std::to_string(id.count) +
                    " defective rollers: their impacts pass for each other's entry events; "
                    "stated for at most " +
@@ -285,129 +290,195 @@ Identification Identify(const Record& record,
     width_reason = "width: not identifiable (no delay range at this speed and sample rate)";
     return finish();
   }
-  // Other rollers' impacts fall at fixed lags from one roller's (their spin phases, one
-  // impact per half turn each). Those lags are not left out of the fit: a release-landing delay
-  // can lie near one, and the fit then still finds it; a delay that lands on one is refused below.
-  std::vector<double>& cross_lags = id.other_rollers_lags_s;
-  if (id.count >= 2) {
-    const std::vector<double>& ph = id.count_fit.best[id.count].spin_phase_rad;
-    const double half_turn = 0.5 / id.spin_hz;
-    for (size_t a = 0; a < ph.size(); ++a)
-      for (size_t b = a + 1; b < ph.size(); ++b) {
-        double lag = std::fmod((ph[b] - ph[a]) / (2.0 * kPi * id.spin_hz), half_turn);
-        if (lag < 0) lag += half_turn;
-        cross_lags.push_back(lag);
-        cross_lags.push_back(half_turn - lag);
+  // The width for the best configuration of k defective rollers: fills id's width fields and
+  // returns why it is not stated ("" when it is).
+  auto width_for = [&](int k) -> std::string {
+    id.width_fit_exclusive = WidthFit{};
+    id.width_from_exclusive_zone = false;
+    id.width_identifiable = false;
+    id.width_m = id.width_low_m = id.width_high_m = 0.0;
+    // Other rollers' impacts fall at fixed lags from one roller's (their spin phases, one
+    // impact per half turn each). Those lags are not left out of the fit: a release-landing delay
+    // can lie near one, and the fit then still finds it; a delay that lands on one is refused
+    // below.
+    std::vector<double>& cross_lags = id.other_rollers_lags_s;
+    cross_lags.clear();
+    if (k >= 2) {
+      const std::vector<double>& ph = id.count_fit.best[k].spin_phase_rad;
+      const double half_turn = 0.5 / id.spin_hz;
+      for (size_t a = 0; a < ph.size(); ++a)
+        for (size_t b = a + 1; b < ph.size(); ++b) {
+          double lag = std::fmod((ph[b] - ph[a]) / (2.0 * kPi * id.spin_hz), half_turn);
+          if (lag < 0) lag += half_turn;
+          cross_lags.push_back(lag);
+          cross_lags.push_back(half_turn - lag);
+        }
+    }
+    wo.noise_correlation_s = 1.0 / (id.width_band_high_hz - id.width_band_low_hz);
+    const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
+    const int lookahead = static_cast<int>(std::ceil((wo.max_delay_s + wo.tail_s) * fs));
+    const HumpFit& humps = id.count_fit.best[k];
+    id.width_fit = FitEntryExit(
+        sew,
+        fs,
+        LoadZoneSamples(humps, id.cage_average, z, id.cage_hz, fs, sew.size(), 0.0, lookahead),
+        block,
+        wo);
+    // The other rollers' lag nearest to the delay, if it lies within the window.
+    std::optional<double> cross_lag;  // the other rollers' lag the delay lies on, if any
+    for (double lag : cross_lags) {
+      const double off = std::abs(id.width_fit.best.delay_s - lag);
+      if (off < options.cross_lag_half_width_s &&
+          (!cross_lag || off < std::abs(id.width_fit.best.delay_s - *cross_lag)))
+        cross_lag = lag;
+    }
+    // A delay on another roller's lag is kept when the same pair stands out where each roller has
+    // the load zone to itself: there the other rollers' impacts are weak, a release and landing is
+    // not (IdentifyOptions::width_exclusive_ratio).
+    if (cross_lag && id.width_fit.usable && options.width_exclusive_ratio > 0) {
+      const std::vector<char> exclusive = LoadZoneSamples(humps,
+                                                          id.cage_average,
+                                                          z,
+                                                          id.cage_hz,
+                                                          fs,
+                                                          sew.size(),
+                                                          options.width_exclusive_ratio,
+                                                          lookahead);
+      // The same pair, judged before its bootstrap (its interval is needed only when it is).
+      WidthFitOptions quick = wo;
+      quick.bootstrap = 0;
+      id.width_fit_exclusive = FitEntryExit(sew, fs, exclusive, block, quick);
+      const WidthFit& x = id.width_fit_exclusive;
+      if (x.usable &&
+          std::abs(x.best.delay_s - id.width_fit.best.delay_s) < options.cross_lag_half_width_s &&
+          x.delay_power_significance >= options.min_delay_significance &&
+          x.best.PairPowerRatio() >= options.width_exclusive_min_pair_power_ratio) {
+        AddDelayInterval(wo, &id.width_fit_exclusive);
+        id.width_fit = id.width_fit_exclusive;
+        id.width_from_exclusive_zone = true;
       }
-  }
-  wo.noise_correlation_s = 1.0 / (id.width_band_high_hz - id.width_band_low_hz);
-  const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
-  const int lookahead = static_cast<int>(std::ceil((wo.max_delay_s + wo.tail_s) * fs));
-  const HumpFit& humps = id.count_fit.best[id.count];
-  id.width_fit = FitEntryExit(
-      sew,
-      fs,
-      LoadZoneSamples(humps, id.cage_average, z, id.cage_hz, fs, sew.size(), 0.0, lookahead),
-      block,
-      wo);
-  // The other rollers' lag nearest to the delay, if it lies within the window.
-  std::optional<double> cross_lag;  // the other rollers' lag the delay lies on, if any
-  for (double lag : cross_lags) {
-    const double off = std::abs(id.width_fit.best.delay_s - lag);
-    if (off < options.cross_lag_half_width_s &&
-        (!cross_lag || off < std::abs(id.width_fit.best.delay_s - *cross_lag)))
-      cross_lag = lag;
-  }
-  // A delay on another roller's lag is kept when the same pair stands out where each roller has
-  // the load zone to itself: there the other rollers' impacts are weak, a release and landing is
-  // not (IdentifyOptions::width_exclusive_ratio).
-  if (cross_lag && id.width_fit.usable && options.width_exclusive_ratio > 0) {
-    const std::vector<char> exclusive = LoadZoneSamples(humps,
-                                                        id.cage_average,
-                                                        z,
-                                                        id.cage_hz,
-                                                        fs,
-                                                        sew.size(),
-                                                        options.width_exclusive_ratio,
-                                                        lookahead);
-    // The same pair, judged before its bootstrap (its interval is needed only when it is).
-    WidthFitOptions quick = wo;
-    quick.bootstrap = 0;
-    id.width_fit_exclusive = FitEntryExit(sew, fs, exclusive, block, quick);
-    const WidthFit& x = id.width_fit_exclusive;
-    if (x.usable &&
-        std::abs(x.best.delay_s - id.width_fit.best.delay_s) < options.cross_lag_half_width_s &&
-        x.delay_power_significance >= options.min_delay_significance &&
-        x.best.PairPowerRatio() >= options.width_exclusive_min_pair_power_ratio) {
-      AddDelayInterval(wo, &id.width_fit_exclusive);
-      id.width_fit = id.width_fit_exclusive;
-      id.width_from_exclusive_zone = true;
     }
-  }
-  const WidthFit& wf = id.width_fit;
-  // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
-  // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
-  const double release_angle =
-      options.width_contact_release ? 2.0 * std::sqrt(id.contact_approach_m / d) : 0.0;
-  auto to_width = [&](double dt, double scale) {
-    const double t = std::max(0.0, (dt - options.width_calibration_offset_s) / scale);
-    return d * std::sin(std::min(0.5 * kPi, kPi * id.spin_hz * t + release_angle));
-  };
-  const double scale = options.width_calibration_scale;
-  const double spread = 1.645 * options.width_calibration_relative_sd;  // 90 % of the relation's
-  const double dt_res = std::max(2.0 / fs, 2.0 * wf.best.rise_s);
-  id.width_resolution_m = to_width(dt_res, scale);
-  std::string& why = width_reason;
-  if (!wf.usable) {
-    why = "width: not identifiable (" + wf.message + ")";
-  } else if (cross_lag && !id.width_from_exclusive_zone) {
-    why = "width: not identifiable (the second event at " +
-          FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms lies on another defective roller's " +
-          "impacts (" + FormatNumber("%.2f", *cross_lag * 1e3) +
-          " ms from the spin phases): their correlation, not a release and landing" +
-          (id.width_fit_exclusive.usable
-               ? std::string("; where each roller has the load zone to itself no like pair")
-               : std::string()) +
-          ")";
-  } else if (wf.delay_power_significance < options.min_delay_significance) {
-    why = "width: not identifiable (no entry event resolved before the impacts: significance " +
-          FormatNumber("%.1f", wf.delay_power_significance) + ")";
-  } else if (const double ratio = wf.best.PairPowerRatio();
-             ratio < options.min_pair_power_ratio || ratio > options.max_pair_power_ratio) {
-    why = "width: not identifiable (the second event at " +
-          FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms correlates at " +
-          FormatNumber("%.2f", ratio) + " of the zero-lag power, outside " +
-          FormatNumber("%.2f", options.min_pair_power_ratio) + "-" +
-          FormatNumber("%.2f", options.max_pair_power_ratio) +
-          ": not a release and landing of one roller)";
-  } else if (wf.delay_high_s < dt_res) {
-    why = "width: below what the record resolves (< " +
+    const WidthFit& wf = id.width_fit;
+    // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
+    // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
+    const double release_angle =
+        options.width_contact_release ? 2.0 * std::sqrt(id.contact_approach_m / d) : 0.0;
+    auto to_width = [&](double dt, double scale) {
+      const double t = std::max(0.0, (dt - options.width_calibration_offset_s) / scale);
+      return d * std::sin(std::min(0.5 * kPi, kPi * id.spin_hz * t + release_angle));
+    };
+    const double scale = options.width_calibration_scale;
+    const double spread = 1.645 * options.width_calibration_relative_sd;  // 90 % of the relation's
+    const double dt_res = std::max(2.0 / fs, 2.0 * wf.best.rise_s);
+    id.width_resolution_m = to_width(dt_res, scale);
+    std::string why;
+    if (!wf.usable) {
+      why = "width: not identifiable (" + wf.message + ")";
+    } else if (cross_lag && !id.width_from_exclusive_zone) {
+      why = "width: not identifiable (the second event at " +
+            FormatNumber("%.2f", wf.best.delay_s * 1e3) +
+            " ms lies on another defective roller's " + "impacts (" +
+            FormatNumber("%.2f", *cross_lag * 1e3) +
+            " ms from the spin phases): their correlation, not a release and landing" +
+            (id.width_fit_exclusive.usable
+                 ? std::string("; where each roller has the load zone to itself no like pair")
+                 : std::string()) +
+            ")";
+    } else if (wf.delay_power_significance < options.min_delay_significance) {
+      why = "width: not identifiable (no entry event resolved before the impacts: significance " +
+            FormatNumber("%.1f", wf.delay_power_significance) + ")";
+    } else if (const double ratio = wf.best.PairPowerRatio();
+               ratio < options.min_pair_power_ratio || ratio > options.max_pair_power_ratio) {
+      why = "width: not identifiable (the second event at " +
+            FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms correlates at " +
+            FormatNumber("%.2f", ratio) + " of the zero-lag power, outside " +
+            FormatNumber("%.2f", options.min_pair_power_ratio) + "-" +
+            FormatNumber("%.2f", options.max_pair_power_ratio) +
+            ": not a release and landing of one roller)";
+    } else if (wf.delay_high_s < dt_res) {
+      why = "width: below what the record resolves (< " +
+            FormatNumber("%.2f", id.width_resolution_m * 1e3) + " mm)";
+    } else if (wf.delay_low_s < dt_res) {
+      why =
+          "width: not identifiable (the entry-exit delay is not resolved from the impact's own "
+          "ring-down: the interval reaches below " +
           FormatNumber("%.2f", id.width_resolution_m * 1e3) + " mm)";
-  } else if (wf.delay_low_s < dt_res) {
-    why =
-        "width: not identifiable (the entry-exit delay is not resolved from the impact's own "
-        "ring-down: the interval reaches below " +
-        FormatNumber("%.2f", id.width_resolution_m * 1e3) + " mm)";
-  } else {
-    id.width_m = to_width(wf.best.delay_s, scale);
-    id.width_low_m = to_width(wf.delay_low_s, scale) * (1.0 - spread);
-    id.width_high_m = to_width(wf.delay_high_s, scale) * (1.0 + spread);
-    const double half = 0.5 * (id.width_high_m - id.width_low_m);
-    const double widest = options.width_max_diameter_fraction * d;
-    if (id.width_m > widest) {
-      why = "width: not identifiable (the fit gives " + FormatNumber("%.2f", id.width_m * 1e3) +
-            " mm, wider than the calibration covers: " + FormatNumber("%.2f", widest * 1e3) +
-            " mm, " + FormatNumber("%.3g", options.width_max_diameter_fraction) +
-            " of the element diameter)";
-      id.width_m = id.width_low_m = id.width_high_m = 0.0;
-    } else if (half > options.max_width_relative_half_interval * id.width_m) {
-      why = "width: not identifiable (90 % interval " + FormatNumber("%.2f", id.width_low_m * 1e3) +
-            "-" + FormatNumber("%.2f", id.width_high_m * 1e3) + " mm is too wide)";
-      id.width_m = id.width_low_m = id.width_high_m = 0.0;
     } else {
-      id.width_identifiable = true;
+      id.width_m = to_width(wf.best.delay_s, scale);
+      id.width_low_m = to_width(wf.delay_low_s, scale) * (1.0 - spread);
+      id.width_high_m = to_width(wf.delay_high_s, scale) * (1.0 + spread);
+      const double half = 0.5 * (id.width_high_m - id.width_low_m);
+      const double widest = options.width_max_diameter_fraction * d;
+      if (id.width_m > widest) {
+        why = "width: not identifiable (the fit gives " + FormatNumber("%.2f", id.width_m * 1e3) +
+              " mm, wider than the calibration covers: " + FormatNumber("%.2f", widest * 1e3) +
+              " mm, " + FormatNumber("%.3g", options.width_max_diameter_fraction) +
+              " of the element diameter)";
+        id.width_m = id.width_low_m = id.width_high_m = 0.0;
+      } else if (half > options.max_width_relative_half_interval * id.width_m) {
+        why = "width: not identifiable (90 % interval " +
+              FormatNumber("%.2f", id.width_low_m * 1e3) + "-" +
+              FormatNumber("%.2f", id.width_high_m * 1e3) + " mm is too wide)";
+        id.width_m = id.width_low_m = id.width_high_m = 0.0;
+      } else {
+        id.width_identifiable = true;
+      }
     }
+    return why;
+  };
+  if (id.count_identifiable) {
+    width_reason = width_for(id.count);
+    return finish();
   }
+  // The count is not stated: the width is, when every count that holds most of the probability
+  // gives the same pair (IdentifyOptions::width_over_uncertain_count).
+  std::vector<int> counts;
+  double mass = 0.0;
+  for (int k = 1; k < static_cast<int>(id.probabilities.size()); ++k)
+    if (id.probabilities[k] >= options.width_count_min_probability &&
+        !id.count_fit.best[k].slots.empty()) {
+      counts.push_back(k);
+      mass += id.probabilities[k];
+    }
+  std::sort(counts.begin(), counts.end(), [&](int a, int b) {
+    return id.probabilities[a] > id.probabilities[b];
+  });
+  if (counts.empty() || mass < options.width_count_mass ||
+      counts.back() > options.width_max_count) {
+    width_reason =
+        "width: not identifiable (needs the count: other rollers' impacts would pass "
+        "for entry events)";
+    return finish();
+  }
+  // Each candidate count's own fit, least probable first, so that the most probable count's fit
+  // is the one left in id; the interval is widened to cover the others'.
+  double low = std::numeric_limits<double>::infinity(), high = 0.0;
+  std::optional<double> delay;  // the first fit's
+  for (auto k = counts.rbegin(); k != counts.rend(); ++k) {
+    const std::string why = width_for(*k);
+    std::string refused;
+    if (!why.empty())
+      refused = "the count is not known; with " + std::to_string(*k) +
+                " defective rollers: " + (why.rfind("width: ", 0) == 0 ? why.substr(7) : why);
+    else if (delay &&
+             std::abs(id.width_fit.best.delay_s - *delay) >= options.cross_lag_half_width_s)
+      refused = "the count is not known, and " + std::to_string(counts.back()) + " and " +
+                std::to_string(*k) + " defective rollers give different entry-exit delays: " +
+                FormatNumber("%.2f", *delay * 1e3) + " and " +
+                FormatNumber("%.2f", id.width_fit.best.delay_s * 1e3) + " ms";
+    if (!refused.empty()) {
+      width_reason = "width: not identifiable (" + refused + ")";
+      id.width_identifiable = false;
+      id.width_m = id.width_low_m = id.width_high_m = 0.0;
+      return finish();
+    }
+    if (!delay) delay = id.width_fit.best.delay_s;
+    low = std::min(low, id.width_low_m);
+    high = std::max(high, id.width_high_m);
+  }
+  id.width_low_m = low;
+  id.width_high_m = high;
+  id.width_counts = counts;
   return finish();
 }
 
@@ -446,7 +517,11 @@ std::string Identification::BriefReport() const {
        << FormatNumber("%.2f", width_low_m * 1e3) << "-" << FormatNumber("%.2f", width_high_m * 1e3)
        << " mm; entry-exit delay " << FormatNumber("%.3f", width_fit.best.delay_s * 1e3)
        << " ms)\n";
-  else
+  if (width_identifiable && !width_counts.empty()) {
+    os << "  width: the same with each likely count (";
+    for (size_t i = 0; i < width_counts.size(); ++i) os << (i ? ", " : "") << width_counts[i];
+    os << " defective rollers), although the count itself is not stated\n";
+  } else
     os << "width: not identified\n";
   for (const auto& r : reasons) os << "  " << r << "\n";
   return os.str();
@@ -475,6 +550,8 @@ std::string Identification::ToJson(int indent) const {
     ordered_json w;
     w["estimate"] = width_m * 1e3;
     w["interval_90"] = {width_low_m * 1e3, width_high_m * 1e3};
+    // Stated without a count: the counts whose configurations all gave this width.
+    w["over_counts"] = width_counts.empty() ? ordered_json(nullptr) : ordered_json(width_counts);
     j["width_mm"] = w;
   } else {
     j["width_mm"] = nullptr;
@@ -539,6 +616,7 @@ std::string Identification::ToJson(int indent) const {
   ordered_json settings;
   settings["min_count_probability"] = options.min_count_probability;
   settings["width_max_count"] = options.width_max_count;
+  settings["width_over_uncertain_count"] = options.width_over_uncertain_count;
   settings["max_count"] =
       options.count.max_count >= 0 ? ordered_json(options.count.max_count) : ordered_json(nullptr);
   settings["radial_load_n"] =

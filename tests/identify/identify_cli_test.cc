@@ -72,7 +72,7 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
 
 // The sideband feature's model with one pattern per parity (not the default) is chosen on the
 // command line and said in the settings; the sample record is one roller either way.
-TEST(IdentifyCli, SidebandPatternPerParityIsASetting) {
+TEST(IdentifyCli, SidebandPatternAndWidthRuleAreSettings) {
   const auto r = RunSpall("identify " + kSample +
                           " --bearing N205EM --rpm 1200 --json --sideband-pattern-per-parity");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -83,6 +83,13 @@ TEST(IdentifyCli, SidebandPatternPerParityIsASetting) {
   ASSERT_EQ(base.code, 0) << base.err;
   EXPECT_FALSE(
       nlohmann::json::parse(base.out)["settings"]["sideband_pattern_per_parity"].get<bool>());
+  EXPECT_TRUE(
+      nlohmann::json::parse(base.out)["settings"]["width_over_uncertain_count"].get<bool>());
+  const auto strict =
+      RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json --width-needs-count");
+  ASSERT_EQ(strict.code, 0) << strict.err;
+  EXPECT_FALSE(
+      nlohmann::json::parse(strict.out)["settings"]["width_over_uncertain_count"].get<bool>());
 }
 
 // A clipped record: the diagnosis warns, and so does the identification's text report (the

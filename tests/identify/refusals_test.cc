@@ -109,6 +109,54 @@ TEST(Refusals, PairOnAnotherRollersLagIsConfirmedWhereEachRollerIsAlone) {
   EXPECT_TRUE(spallkit::testing::HasReason(lag_rule, "another defective roller's impacts"));
 }
 
+// Without a stated count the width is still stated when every likely count's configuration gives
+// the same pair (IdentifyOptions::width_over_uncertain_count): two 1.5 mm spalls in slots 0 and
+// 5, the evidence tempered so that P(2) < 1, and a stating threshold of 1 so that the count is
+// refused. The width is then the stated count's, its interval at least as wide; asking the likely
+// counts to hold all of the probability refuses it again, and so does a likely count (3, at a
+// higher temperature) whose own fit does not resolve the pair.
+TEST(Refusals, WidthWithoutACountWhenEveryLikelyCountGivesTheSamePair) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0, 1.5, 0}, {5, 1.5, 26}}, 3));
+  IdentifyOptions o = SignalModelOptions();
+  o.width_max_count = 3;
+  o.count.temperature_cage = o.count.temperature_sidebands = 2.0;
+  const Identification stated = IdentifyRecord(r, 1200, 10000, o);
+  ASSERT_TRUE(stated.count_identifiable) << stated.BriefReport();
+  ASSERT_EQ(stated.count, 2);
+  ASSERT_TRUE(stated.width_identifiable) << stated.BriefReport();
+  ASSERT_LT(stated.probabilities[2], 1.0) << stated.BriefReport();
+
+  o.min_count_probability = 1.0;
+  o.width_over_uncertain_count = false;
+  const Identification refused = IdentifyRecord(r, 1200, 10000, o);
+  EXPECT_FALSE(refused.count_identifiable);
+  EXPECT_FALSE(refused.width_identifiable);
+  EXPECT_TRUE(spallkit::testing::HasReason(refused, "needs the count")) << refused.BriefReport();
+
+  o.width_over_uncertain_count = true;
+  const Identification over = IdentifyRecord(r, 1200, 10000, o);
+  EXPECT_FALSE(over.count_identifiable);
+  ASSERT_TRUE(over.width_identifiable) << over.BriefReport();
+  EXPECT_EQ(over.width_m, stated.width_m);
+  EXPECT_LE(over.width_low_m, stated.width_low_m);
+  EXPECT_GE(over.width_high_m, stated.width_high_m);
+  ASSERT_FALSE(over.width_counts.empty());
+  EXPECT_EQ(over.width_counts.front(), 2);  // the most probable count first
+  EXPECT_NE(over.ToJson().find("\"over_counts\""), std::string::npos);
+
+  o.width_count_mass = 1.0;
+  const Identification strict = IdentifyRecord(r, 1200, 10000, o);
+  EXPECT_FALSE(strict.width_identifiable) << strict.BriefReport();
+
+  o.width_count_mass = IdentifyOptions().width_count_mass;
+  o.count.temperature_cage = o.count.temperature_sidebands = 4.0;  // P(3) above 0.05
+  const Identification two_counts = IdentifyRecord(r, 1200, 10000, o);
+  ASSERT_GE(two_counts.probabilities[3], o.width_count_min_probability) << two_counts.BriefReport();
+  EXPECT_FALSE(two_counts.width_identifiable) << two_counts.BriefReport();
+  EXPECT_TRUE(spallkit::testing::HasReason(two_counts, "with 3 defective rollers"))
+      << two_counts.BriefReport();
+}
+
 // A width beyond the calibration's widest (IdentifyOptions::width_max_diameter_fraction) is not
 // stated: a 3.5 mm spall on the 6.5 mm roller (0.54 of it) of the synthetic signal model, whose
 // width relation is exact up to the fit's own 0.8, is stated there and refused with the
