@@ -436,7 +436,7 @@ Identification Identify(const Record& record,
   double mass = 0.0;
   for (int k = 1; k < static_cast<int>(id.probabilities.size()); ++k)
     if (id.probabilities[k] >= options.width_count_min_probability &&
-        !id.count_fit.best[k].slots.empty()) {
+        k < static_cast<int>(id.count_fit.best.size()) && !id.count_fit.best[k].slots.empty()) {
       counts.push_back(k);
       mass += id.probabilities[k];
     }
@@ -444,7 +444,7 @@ Identification Identify(const Record& record,
     return id.probabilities[a] > id.probabilities[b];
   });
   if (counts.empty() || mass < options.width_count_mass ||
-      counts.back() > options.width_max_count) {
+      *std::max_element(counts.begin(), counts.end()) > options.width_max_count) {
     width_reason =
         "width: not identifiable (needs the count: other rollers' impacts would pass "
         "for entry events)";
