@@ -66,6 +66,150 @@ std::vector<char> LoadZoneSamples(const HumpFit& fit,
   return zone;
 }
 
+// Identify's width step for the best configuration of k defective rollers (id's count fit):
+// fills id's width fields and returns why no width is stated ("" when it is). sew is the width
+// band's smoothed squared envelope at fs, z and d the bearing's roller count and diameter, wo the
+// width fit's options for this record.
+std::string WidthForCount(int k,
+                          const std::vector<double>& sew,
+                          double fs,
+                          int z,
+                          double d,
+                          const WidthFitOptions& wo,
+                          const IdentifyOptions& options,
+                          Identification* id) {
+  id->width_fit_exclusive = WidthFit{};
+  id->width_from_exclusive_zone = false;
+  id->width_identifiable = false;
+  id->width_m = id->width_low_m = id->width_high_m = 0.0;
+  // Other rollers' impacts fall at fixed lags from one roller's (their spin phases, one
+  // impact per half turn each). Those lags are not left out of the fit: a release-landing delay
+  // can lie near one, and the fit then still finds it; a delay that lands on one is refused
+  // below.
+  std::vector<double>& cross_lags = id->other_rollers_lags_s;
+  cross_lags.clear();
+  if (k >= 2) {
+    const std::vector<double>& ph = id->count_fit.best[k].spin_phase_rad;
+    const double half_turn = 0.5 / id->spin_hz;
+    for (size_t a = 0; a < ph.size(); ++a)
+      for (size_t b = a + 1; b < ph.size(); ++b) {
+        double lag = std::fmod((ph[b] - ph[a]) / (2.0 * kPi * id->spin_hz), half_turn);
+        if (lag < 0) lag += half_turn;
+        cross_lags.push_back(lag);
+        cross_lags.push_back(half_turn - lag);
+      }
+  }
+  const int block = std::max(1, static_cast<int>(fs / id->cage_hz));
+  const int lookahead = static_cast<int>(std::ceil((wo.max_delay_s + wo.tail_s) * fs));
+  const HumpFit& humps = id->count_fit.best[k];
+  id->width_fit = FitEntryExit(
+      sew,
+      fs,
+      LoadZoneSamples(humps, id->cage_average, z, id->cage_hz, fs, sew.size(), 0.0, lookahead),
+      block,
+      wo);
+  // The other rollers' lag nearest to the delay, if it lies within the window.
+  std::optional<double> cross_lag;  // the other rollers' lag the delay lies on, if any
+  for (double lag : cross_lags) {
+    const double off = std::abs(id->width_fit.best.delay_s - lag);
+    if (off < options.cross_lag_half_width_s &&
+        (!cross_lag || off < std::abs(id->width_fit.best.delay_s - *cross_lag)))
+      cross_lag = lag;
+  }
+  // A delay on another roller's lag is kept when the same pair stands out where each roller has
+  // the load zone to itself: there the other rollers' impacts are weak, a release and landing is
+  // not (IdentifyOptions::width_exclusive_ratio).
+  if (cross_lag && id->width_fit.usable && options.width_exclusive_ratio > 0) {
+    const std::vector<char> exclusive = LoadZoneSamples(humps,
+                                                        id->cage_average,
+                                                        z,
+                                                        id->cage_hz,
+                                                        fs,
+                                                        sew.size(),
+                                                        options.width_exclusive_ratio,
+                                                        lookahead);
+    // The same pair, judged before its bootstrap (its interval is needed only when it is).
+    WidthFitOptions quick = wo;
+    quick.bootstrap = 0;
+    id->width_fit_exclusive = FitEntryExit(sew, fs, exclusive, block, quick);
+    const WidthFit& x = id->width_fit_exclusive;
+    if (x.usable &&
+        std::abs(x.best.delay_s - id->width_fit.best.delay_s) < options.cross_lag_half_width_s &&
+        x.delay_power_significance >= options.min_delay_significance &&
+        x.best.PairPowerRatio() >= options.width_exclusive_min_pair_power_ratio) {
+      AddDelayInterval(wo, &id->width_fit_exclusive);
+      id->width_fit = id->width_fit_exclusive;
+      id->width_from_exclusive_zone = true;
+    }
+  }
+  const WidthFit& wf = id->width_fit;
+  // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
+  // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
+  const double release_angle =
+      options.width_contact_release ? 2.0 * std::sqrt(id->contact_approach_m / d) : 0.0;
+  auto to_width = [&](double dt, double scale) {
+    const double t = std::max(0.0, (dt - options.width_calibration_offset_s) / scale);
+    return d * std::sin(std::min(0.5 * kPi, kPi * id->spin_hz * t + release_angle));
+  };
+  const double scale = options.width_calibration_scale;
+  const double spread = 1.645 * options.width_calibration_relative_sd;  // 90 % of the relation's
+  const double dt_res = std::max(2.0 / fs, 2.0 * wf.best.rise_s);
+  id->width_resolution_m = to_width(dt_res, scale);
+  std::string why;
+  if (!wf.usable) {
+    why = "width: not identifiable (" + wf.message + ")";
+  } else if (cross_lag && !id->width_from_exclusive_zone) {
+    why = "width: not identifiable (the second event at " +
+          FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms lies on another defective roller's " +
+          "impacts (" + FormatNumber("%.2f", *cross_lag * 1e3) +
+          " ms from the spin phases): their correlation, not a release and landing" +
+          (id->width_fit_exclusive.usable
+               ? std::string("; where each roller has the load zone to itself no like pair")
+               : std::string()) +
+          ")";
+  } else if (wf.delay_power_significance < options.min_delay_significance) {
+    why = "width: not identifiable (no entry event resolved before the impacts: significance " +
+          FormatNumber("%.1f", wf.delay_power_significance) + ")";
+  } else if (const double ratio = wf.best.PairPowerRatio();
+             ratio < options.min_pair_power_ratio || ratio > options.max_pair_power_ratio) {
+    why = "width: not identifiable (the second event at " +
+          FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms correlates at " +
+          FormatNumber("%.2f", ratio) + " of the zero-lag power, outside " +
+          FormatNumber("%.2f", options.min_pair_power_ratio) + "-" +
+          FormatNumber("%.2f", options.max_pair_power_ratio) +
+          ": not a release and landing of one roller)";
+  } else if (wf.delay_high_s < dt_res) {
+    why = "width: below what the record resolves (< " +
+          FormatNumber("%.2f", id->width_resolution_m * 1e3) + " mm)";
+  } else if (wf.delay_low_s < dt_res) {
+    why =
+        "width: not identifiable (the entry-exit delay is not resolved from the impact's own "
+        "ring-down: the interval reaches below " +
+        FormatNumber("%.2f", id->width_resolution_m * 1e3) + " mm)";
+  } else {
+    id->width_m = to_width(wf.best.delay_s, scale);
+    id->width_low_m = to_width(wf.delay_low_s, scale) * (1.0 - spread);
+    id->width_high_m = to_width(wf.delay_high_s, scale) * (1.0 + spread);
+    const double half = 0.5 * (id->width_high_m - id->width_low_m);
+    const double widest = options.width_max_diameter_fraction * d;
+    if (id->width_m > widest) {
+      why = "width: not identifiable (the fit gives " + FormatNumber("%.2f", id->width_m * 1e3) +
+            " mm, wider than the calibration covers: " + FormatNumber("%.2f", widest * 1e3) +
+            " mm, " + FormatNumber("%.3g", options.width_max_diameter_fraction) +
+            " of the element diameter)";
+      id->width_m = id->width_low_m = id->width_high_m = 0.0;
+    } else if (half > options.max_width_relative_half_interval * id->width_m) {
+      why = "width: not identifiable (90 % interval " +
+            FormatNumber("%.2f", id->width_low_m * 1e3) + "-" +
+            FormatNumber("%.2f", id->width_high_m * 1e3) + " mm is too wide)";
+      id->width_m = id->width_low_m = id->width_high_m = 0.0;
+    } else {
+      id->width_identifiable = true;
+    }
+  }
+  return why;
+}
+
 }  // namespace
 
 bool IdentifyOptions::IsValid(std::string* error) const {
@@ -258,6 +402,7 @@ Identification Identify(const Record& record,
   wo.max_delay_s = std::min(
       0.4 / f_b0, options.width_calibration_scale * chord_max + options.width_calibration_offset_s);
   wo.min_delay_s = std::max(wo.min_delay_s, 2.0 / fs);
+  wo.noise_correlation_s = 1.0 / (id.width_band_high_hz - id.width_band_low_hz);
   auto finish = [&]() {
     for (const std::string* r : {&count_reason, &width_reason})
       if (!r->empty()) id.reasons.push_back(*r);
@@ -290,144 +435,8 @@ Identification Identify(const Record& record,
     width_reason = "width: not identifiable (no delay range at this speed and sample rate)";
     return finish();
   }
-  // The width for the best configuration of k defective rollers: fills id's width fields and
-  // returns why it is not stated ("" when it is).
-  auto width_for = [&](int k) -> std::string {
-    id.width_fit_exclusive = WidthFit{};
-    id.width_from_exclusive_zone = false;
-    id.width_identifiable = false;
-    id.width_m = id.width_low_m = id.width_high_m = 0.0;
-    // Other rollers' impacts fall at fixed lags from one roller's (their spin phases, one
-    // impact per half turn each). Those lags are not left out of the fit: a release-landing delay
-    // can lie near one, and the fit then still finds it; a delay that lands on one is refused
-    // below.
-    std::vector<double>& cross_lags = id.other_rollers_lags_s;
-    cross_lags.clear();
-    if (k >= 2) {
-      const std::vector<double>& ph = id.count_fit.best[k].spin_phase_rad;
-      const double half_turn = 0.5 / id.spin_hz;
-      for (size_t a = 0; a < ph.size(); ++a)
-        for (size_t b = a + 1; b < ph.size(); ++b) {
-          double lag = std::fmod((ph[b] - ph[a]) / (2.0 * kPi * id.spin_hz), half_turn);
-          if (lag < 0) lag += half_turn;
-          cross_lags.push_back(lag);
-          cross_lags.push_back(half_turn - lag);
-        }
-    }
-    wo.noise_correlation_s = 1.0 / (id.width_band_high_hz - id.width_band_low_hz);
-    const int block = std::max(1, static_cast<int>(fs / id.cage_hz));
-    const int lookahead = static_cast<int>(std::ceil((wo.max_delay_s + wo.tail_s) * fs));
-    const HumpFit& humps = id.count_fit.best[k];
-    id.width_fit = FitEntryExit(
-        sew,
-        fs,
-        LoadZoneSamples(humps, id.cage_average, z, id.cage_hz, fs, sew.size(), 0.0, lookahead),
-        block,
-        wo);
-    // The other rollers' lag nearest to the delay, if it lies within the window.
-    std::optional<double> cross_lag;  // the other rollers' lag the delay lies on, if any
-    for (double lag : cross_lags) {
-      const double off = std::abs(id.width_fit.best.delay_s - lag);
-      if (off < options.cross_lag_half_width_s &&
-          (!cross_lag || off < std::abs(id.width_fit.best.delay_s - *cross_lag)))
-        cross_lag = lag;
-    }
-    // A delay on another roller's lag is kept when the same pair stands out where each roller has
-    // the load zone to itself: there the other rollers' impacts are weak, a release and landing is
-    // not (IdentifyOptions::width_exclusive_ratio).
-    if (cross_lag && id.width_fit.usable && options.width_exclusive_ratio > 0) {
-      const std::vector<char> exclusive = LoadZoneSamples(humps,
-                                                          id.cage_average,
-                                                          z,
-                                                          id.cage_hz,
-                                                          fs,
-                                                          sew.size(),
-                                                          options.width_exclusive_ratio,
-                                                          lookahead);
-      // The same pair, judged before its bootstrap (its interval is needed only when it is).
-      WidthFitOptions quick = wo;
-      quick.bootstrap = 0;
-      id.width_fit_exclusive = FitEntryExit(sew, fs, exclusive, block, quick);
-      const WidthFit& x = id.width_fit_exclusive;
-      if (x.usable &&
-          std::abs(x.best.delay_s - id.width_fit.best.delay_s) < options.cross_lag_half_width_s &&
-          x.delay_power_significance >= options.min_delay_significance &&
-          x.best.PairPowerRatio() >= options.width_exclusive_min_pair_power_ratio) {
-        AddDelayInterval(wo, &id.width_fit_exclusive);
-        id.width_fit = id.width_fit_exclusive;
-        id.width_from_exclusive_zone = true;
-      }
-    }
-    const WidthFit& wf = id.width_fit;
-    // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
-    // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
-    const double release_angle =
-        options.width_contact_release ? 2.0 * std::sqrt(id.contact_approach_m / d) : 0.0;
-    auto to_width = [&](double dt, double scale) {
-      const double t = std::max(0.0, (dt - options.width_calibration_offset_s) / scale);
-      return d * std::sin(std::min(0.5 * kPi, kPi * id.spin_hz * t + release_angle));
-    };
-    const double scale = options.width_calibration_scale;
-    const double spread = 1.645 * options.width_calibration_relative_sd;  // 90 % of the relation's
-    const double dt_res = std::max(2.0 / fs, 2.0 * wf.best.rise_s);
-    id.width_resolution_m = to_width(dt_res, scale);
-    std::string why;
-    if (!wf.usable) {
-      why = "width: not identifiable (" + wf.message + ")";
-    } else if (cross_lag && !id.width_from_exclusive_zone) {
-      why = "width: not identifiable (the second event at " +
-            FormatNumber("%.2f", wf.best.delay_s * 1e3) +
-            " ms lies on another defective roller's " + "impacts (" +
-            FormatNumber("%.2f", *cross_lag * 1e3) +
-            " ms from the spin phases): their correlation, not a release and landing" +
-            (id.width_fit_exclusive.usable
-                 ? std::string("; where each roller has the load zone to itself no like pair")
-                 : std::string()) +
-            ")";
-    } else if (wf.delay_power_significance < options.min_delay_significance) {
-      why = "width: not identifiable (no entry event resolved before the impacts: significance " +
-            FormatNumber("%.1f", wf.delay_power_significance) + ")";
-    } else if (const double ratio = wf.best.PairPowerRatio();
-               ratio < options.min_pair_power_ratio || ratio > options.max_pair_power_ratio) {
-      why = "width: not identifiable (the second event at " +
-            FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms correlates at " +
-            FormatNumber("%.2f", ratio) + " of the zero-lag power, outside " +
-            FormatNumber("%.2f", options.min_pair_power_ratio) + "-" +
-            FormatNumber("%.2f", options.max_pair_power_ratio) +
-            ": not a release and landing of one roller)";
-    } else if (wf.delay_high_s < dt_res) {
-      why = "width: below what the record resolves (< " +
-            FormatNumber("%.2f", id.width_resolution_m * 1e3) + " mm)";
-    } else if (wf.delay_low_s < dt_res) {
-      why =
-          "width: not identifiable (the entry-exit delay is not resolved from the impact's own "
-          "ring-down: the interval reaches below " +
-          FormatNumber("%.2f", id.width_resolution_m * 1e3) + " mm)";
-    } else {
-      id.width_m = to_width(wf.best.delay_s, scale);
-      id.width_low_m = to_width(wf.delay_low_s, scale) * (1.0 - spread);
-      id.width_high_m = to_width(wf.delay_high_s, scale) * (1.0 + spread);
-      const double half = 0.5 * (id.width_high_m - id.width_low_m);
-      const double widest = options.width_max_diameter_fraction * d;
-      if (id.width_m > widest) {
-        why = "width: not identifiable (the fit gives " + FormatNumber("%.2f", id.width_m * 1e3) +
-              " mm, wider than the calibration covers: " + FormatNumber("%.2f", widest * 1e3) +
-              " mm, " + FormatNumber("%.3g", options.width_max_diameter_fraction) +
-              " of the element diameter)";
-        id.width_m = id.width_low_m = id.width_high_m = 0.0;
-      } else if (half > options.max_width_relative_half_interval * id.width_m) {
-        why = "width: not identifiable (90 % interval " +
-              FormatNumber("%.2f", id.width_low_m * 1e3) + "-" +
-              FormatNumber("%.2f", id.width_high_m * 1e3) + " mm is too wide)";
-        id.width_m = id.width_low_m = id.width_high_m = 0.0;
-      } else {
-        id.width_identifiable = true;
-      }
-    }
-    return why;
-  };
   if (id.count_identifiable) {
-    width_reason = width_for(id.count);
+    width_reason = WidthForCount(id.count, sew, fs, z, d, wo, options, &id);
     return finish();
   }
   // The count is not stated: the width is, when every count that holds most of the probability
@@ -455,7 +464,7 @@ Identification Identify(const Record& record,
   double low = std::numeric_limits<double>::infinity(), high = 0.0;
   std::optional<double> delay;  // the first fit's
   for (auto k = counts.rbegin(); k != counts.rend(); ++k) {
-    const std::string why = width_for(*k);
+    const std::string why = WidthForCount(*k, sew, fs, z, d, wo, options, &id);
     std::string refused;
     if (!why.empty())
       refused = "the count is not known; with " + std::to_string(*k) +
