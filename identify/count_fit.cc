@@ -328,14 +328,20 @@ double SidebandChi2AtPerParity(const SpinSidebands& sb,
         v[line(j, m) * k + q] = e * std::polar(1.0, m * 2.0 * kPi * slots[q] / z);
   }
   std::vector<std::complex<double>> g[2] = {start_pattern, start_pattern};
-  std::vector<double> a(k,
-                        1.0);  // equal strengths to start: feature A's are poor when humps overlap
+  // Equal strengths to start: feature A's are poor when humps overlap.
+  std::vector<double> a(k, 1.0);
   std::vector<std::complex<double>> p(nj, 0.0);
-  auto u_of = [&](int j, int m) {
-    std::complex<double> u = 0.0;
-    for (int q = 0; q < k; ++q) u += a[q] * v[line(j, m) * k + q];
-    return u;
+  // The rollers' sum u(j, m) = sum_q a_q v[(j, m), q], kept for the current strengths.
+  std::vector<std::complex<double>> u_sum(static_cast<size_t>(nj) * lines);
+  auto update_u = [&]() {
+    for (int j = 1; j <= nj; ++j)
+      for (int m = -sb.orders; m <= sb.orders; ++m) {
+        std::complex<double> u = 0.0;
+        for (int q = 0; q < k; ++q) u += a[q] * v[line(j, m) * k + q];
+        u_sum[line(j, m)] = u;
+      }
   };
+  auto u_of = [&](int j, int m) { return u_sum[line(j, m)]; };
   auto weight = [&](int j, int m) { return 1.0 / sb.noise_power[sb.Index(j, m)]; };
   auto solve_p = [&]() {
     for (int j = 1; j <= nj; ++j) {
@@ -383,8 +389,10 @@ double SidebandChi2AtPerParity(const SpinSidebands& sb,
     const double amax = *std::max_element(atb.begin(), atb.end());
     if (!(amax > 0)) return;
     for (int q = 0; q < k; ++q) a[q] = std::max(atb[q], 0.0) / amax;
+    update_u();
   };
   constexpr int kAlternations = 5;
+  update_u();
   solve_p();
   for (int it = 0; it < kAlternations; ++it) {
     solve_patterns();

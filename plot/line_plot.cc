@@ -139,8 +139,9 @@ void ResolveAxes(const LinePlot& plot, Axis* x_axis, Axis* y_axis) {
       if (y > 0) ypos.Add(y);
       if (x > 0) xpos.Add(x);
       // The bars are part of the data range (a log axis keeps the positive ends only).
-      const double e = s.y_error.empty() ? 0.0 : s.y_error[i];
-      for (const double v : {y - (std::isfinite(e) ? e : 0.0), y + (std::isfinite(e) ? e : 0.0)}) {
+      double e = s.y_error.empty() ? 0.0 : s.y_error[i];
+      if (!std::isfinite(e)) e = 0.0;
+      for (const double v : {y - e, y + e}) {
         yr.Add(v);
         if (v > 0) ypos.Add(v);
       }

@@ -46,6 +46,11 @@ def log_probabilities(a, b, t_a, t_b):
     return z - (top + math.log(np.exp(finite - top).sum()))
 
 
+def most_probable(v):
+    """The K of the largest finite entry of a per-K log evidence or log probability."""
+    return int(np.argmax(np.where(np.isfinite(v), v, -np.inf)))
+
+
 def mean_log_p(rows, t_a, t_b, floor=-50.0):
     """Mean ln P(true K) over the rows."""
     total = 0.0
@@ -60,7 +65,7 @@ def confident_wrong(rows, t_a, t_b, level=0.99):
     n = 0
     for k, a, b in rows:
         lp = log_probabilities(a, b, t_a, t_b)
-        best = int(np.argmax(np.where(np.isfinite(lp), lp, -np.inf)))
+        best = most_probable(lp)
         if best != k and best > 0 and math.exp(lp[best]) >= level:
             n += 1
     return n
@@ -71,10 +76,10 @@ def first_ranked(rows, t_a, t_b, level=0.6):
     (t_a, t_b) per K; and of both, the right / wrong ones at P >= level."""
     a_right = b_right = both_right = sure_right = sure_wrong = 0
     for k, a, b in rows:
-        a_right += int(np.argmax(np.where(np.isfinite(a), a, -np.inf))) == k
-        b_right += int(np.argmax(np.where(np.isfinite(b), b, -np.inf))) == k
+        a_right += most_probable(a) == k
+        b_right += most_probable(b) == k
         lp = log_probabilities(a, b, t_a, t_b)
-        best = int(np.argmax(np.where(np.isfinite(lp), lp, -np.inf)))
+        best = most_probable(lp)
         both_right += best == k
         if math.exp(lp[best]) >= level:
             sure_right += best == k
