@@ -7,6 +7,7 @@
 #include "apps/cli_guard.h"
 #include "apps/command.h"
 #include "apps/record_options.h"
+#include "apps/report_output.h"
 #include "core/error.h"
 #include "dsp/diagnose.h"
 #include "study/diagnosis_plots.h"
@@ -15,7 +16,7 @@ namespace {
 
 struct Opts {
   spallkit::apps::RecordInputOptions input;
-  bool json = false;
+  spallkit::apps::ReportOutputOptions output;
   std::string plot_dir;
   bool prewhiten = false;
   double tolerance_percent = 2.0;
@@ -28,6 +29,7 @@ struct Opts {
 int Run(const Opts& o) {
   using namespace spallkit;
   o.input.Check();
+  o.output.Check(o.input.record);
   if (o.threads < 0 || o.threads > dsp::DiagnoseOptions::kMaxThreads)
     throw InputError("--threads must be in 0.." +
                      std::to_string(dsp::DiagnoseOptions::kMaxThreads) + " (got " +
@@ -61,13 +63,9 @@ int Run(const Opts& o) {
 
   const dsp::Diagnosis d = dsp::Diagnose(record, g, o.input.ShaftHz(), opt);
   if (!o.plot_dir.empty()) study::WriteDiagnosisPlots(d, record.samples, o.plot_dir);
-  if (o.json) {
-    std::printf("%s\n", d.ToJson(2).c_str());
-  } else {
-    std::printf("%s", d.BriefReport().c_str());
-    if (!o.plot_dir.empty())
-      std::printf("plots: %s/{ses,spectrogram,kurtogram}.png\n", o.plot_dir.c_str());
-  }
+  std::string text = d.BriefReport();
+  if (!o.plot_dir.empty()) text += "plots: " + o.plot_dir + "/{ses,spectrogram,kurtogram}.png\n";
+  o.output.Emit(text, d.ToJson(2));
   return 0;
 }
 
@@ -77,7 +75,7 @@ spallkit::apps::Register reg(
     [](CLI::App& sub) {
       auto o = std::make_shared<Opts>();
       o->input.Add(sub);
-      sub.add_flag("--json", o->json, "print one JSON object instead of the summary");
+      o->output.Add(sub, "summary");
       sub.add_option("--plot-dir", o->plot_dir, "write ses.png, spectrogram.png, kurtogram.png");
       sub.add_flag("--prewhiten", o->prewhiten, "cepstrum pre-whitening before the analysis");
       sub.add_option("--tolerance-percent", o->tolerance_percent, "slip / speed tolerance, %")

@@ -9,8 +9,10 @@
 #include "apps/command.h"
 #include "apps/identify_options.h"
 #include "apps/record_options.h"
+#include "apps/report_output.h"
 #include "core/constants.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "dsp/diagnose.h"
 #include "identify/identify.h"
 #include "study/identification_plots.h"
@@ -21,7 +23,7 @@ struct Opts {
   spallkit::apps::RecordInputOptions input;
   double load_n = 0.0;
   CLI::Option* load_option = nullptr;
-  bool json = false;
+  spallkit::apps::ReportOutputOptions output;
   std::string plot_dir;
   int max_count = -1;
   spallkit::apps::IdentifyStatementOptions statements;
@@ -32,6 +34,7 @@ struct Opts {
 int Run(const Opts& o) {
   using namespace spallkit;
   o.input.Check();
+  o.output.Check(o.input.record);
   if (o.load_option && o.load_option->count() > 0 &&
       (!(o.load_n > 0.0) || !std::isfinite(o.load_n)))
     throw InputError("--load-n must be > 0 N (got " + std::to_string(o.load_n) + ")");
@@ -55,17 +58,11 @@ int Run(const Opts& o) {
   const dsp::Diagnosis d = dsp::Diagnose(record, g, o.input.ShaftHz(), dopt);
   const identify::Identification id = identify::Identify(record, g, o.input.ShaftHz(), d, io);
   if (!o.plot_dir.empty()) study::WriteIdentificationPlots(id, o.plot_dir);
-  if (o.json) {
-    std::printf("%s\n", id.ToJson(2).c_str());
-  } else {
-    std::printf("record: %s (%zu samples, %g Hz)\n",
-                record.source.c_str(),
-                record.samples.size(),
-                record.sample_rate_hz);
-    std::printf("%s", id.BriefReport().c_str());
-    if (!o.plot_dir.empty())
-      std::printf("plots: %s/{cage_average,sidebands,delay}.png\n", o.plot_dir.c_str());
-  }
+  std::string text = "record: " + record.source + " (" + std::to_string(record.samples.size()) +
+                     " samples, " + FormatNumber("%g", record.sample_rate_hz) + " Hz)\n" +
+                     id.BriefReport();
+  if (!o.plot_dir.empty()) text += "plots: " + o.plot_dir + "/{cage_average,sidebands,delay}.png\n";
+  o.output.Emit(text, id.ToJson(2));
   return 0;
 }
 
@@ -88,7 +85,7 @@ spallkit::apps::Register reg(
           o->sensor_angle_deg,
           "sensor direction from the load line, deg (0: on it; 90: horizontal under a "
           "vertical load)");
-      sub.add_flag("--json", o->json, "print one JSON object instead of the report");
+      o->output.Add(sub, "report");
       sub.add_option(
           "--plot-dir", o->plot_dir, "write cage_average.png, sidebands.png, delay.png there");
       return [o] { return Run(*o); };

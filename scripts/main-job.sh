@@ -39,20 +39,17 @@ time "$SPALL" simulate datasets/scenes/paper-verification.toml -o "$OUT/run.h5" 
 # spikes would dominate the squared envelope (docs/DIAGNOSIS.md, "Empirical false-alarm rate").
 FROM=0.05
 echo "== diagnose $OUT/run.csv from $FROM s (N205EM, $RPM rpm)"
-"$SPALL" diagnose "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --from-s $FROM --plot-dir "$OUT/plots" |
-  tee "$OUT/report.txt"
-"$SPALL" diagnose "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --from-s $FROM --json > "$OUT/report.json"
+"$SPALL" diagnose "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --from-s $FROM --plot-dir "$OUT/plots" \
+  --json-out "$OUT/report.json" | tee "$OUT/report.txt"
 # How many rollers are spalled and how wide (docs/IDENTIFY.md), with the scene's radial load.
 LOAD_N=10000
 echo "== identify $OUT/run.csv from $FROM s (N205EM, $RPM rpm, $LOAD_N N)"
-"$SPALL" identify "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --from-s $FROM --load-n $LOAD_N |
-  tee "$OUT/identify.txt"
 "$SPALL" identify "$OUT/run.csv" --bearing N205EM --rpm "$RPM" --from-s $FROM --load-n $LOAD_N \
-  --json > "$OUT/identify.json"
+  --json-out "$OUT/identify.json" | tee "$OUT/identify.txt"
 
 RECORD=datasets/samples/n205em_roller_defect_1200rpm.csv
 echo "== diagnose $RECORD (N205EM, 1200 rpm)"
-"$SPALL" diagnose "$RECORD" --bearing N205EM --rpm 1200 | tee "$OUT/sample_report.txt"
-"$SPALL" diagnose "$RECORD" --bearing N205EM --rpm 1200 --json > "$OUT/sample_report.json"
+"$SPALL" diagnose "$RECORD" --bearing N205EM --rpm 1200 --json-out "$OUT/sample_report.json" |
+  tee "$OUT/sample_report.txt"
 echo "== wrote $OUT/run.h5, $OUT/report.txt, $OUT/report.json, $OUT/identify.*, $OUT/sample_report.* and $OUT/plots/"
 ls "$OUT/plots"

@@ -76,6 +76,35 @@ TEST(DiagnoseCli, OuterRaceJsonAndPlots) {
   EXPECT_NE(text.out.find("VERDICT: outer_race"), std::string::npos) << text.out;
 }
 
+// --json-out writes the JSON object --json would print, while the text summary goes to stdout; it
+// never overwrites the record, and a bad path fails before the analysis.
+TEST(DiagnoseCli, JsonOutWritesTheJsonBesideTheTextSummary) {
+  const std::string path = WriteSynthetic("spall_cli_outer_json_out.csv", 2.0, true);
+  const std::string json_path =
+      (std::filesystem::temp_directory_path() / "spall_cli_outer_json_out.json").string();
+  std::filesystem::remove(json_path);
+  const Result both =
+      RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --json-out " + json_path);
+  ASSERT_EQ(both.code, 0) << both.err;
+  EXPECT_NE(both.out.find("VERDICT: outer_race"), std::string::npos) << both.out;
+  const Result json = RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  std::ifstream in(json_path);
+  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(written, json.out);
+  EXPECT_EQ(nlohmann::json::parse(written)["verdict"], "outer_race");
+
+  const Result onto_record =
+      RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --json-out " + path);
+  EXPECT_EQ(onto_record.code, 2);
+  EXPECT_NE(onto_record.err.find("--json-out"), std::string::npos) << onto_record.err;
+  EXPECT_GT(std::filesystem::file_size(path), 100000u);  // the record is intact
+  const Result no_folder =
+      RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --json-out /nonexistent/r.json");
+  EXPECT_EQ(no_folder.code, 2);
+  EXPECT_NE(no_folder.err.find("/nonexistent"), std::string::npos) << no_folder.err;
+}
+
 // --from-s leaves out the record's start (a simulation's start-up): the analysis sees the rest.
 TEST(DiagnoseCli, FromSecondsLeavesOutTheStart) {
   const std::string path = WriteSynthetic("spall_cli_outer_from.csv", 2.0, true);

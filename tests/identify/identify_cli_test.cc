@@ -38,11 +38,22 @@ TEST(IdentifyCli, JsonHasTheDocumentedKeys) {
   EXPECT_NEAR(total, 1.0, 1e-9);
 }
 
-TEST(IdentifyCli, TextReport) {
-  const auto r = RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200");
+// The text report on stdout; --json-out writes beside it the JSON object --json prints.
+TEST(IdentifyCli, TextReportAndJsonOut) {
+  const std::string json_path =
+      (std::filesystem::temp_directory_path() / "spall_identify_json_out.json").string();
+  std::filesystem::remove(json_path);
+  const auto r =
+      RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json-out " + json_path);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("defective rollers: 1"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("depth: not identifiable"), std::string::npos);
+  const auto json = RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  std::ifstream in(json_path);
+  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(written, json.out);
+  EXPECT_EQ(nlohmann::json::parse(written)["defective_rollers"]["count"], 1);
 }
 
 // A stricter stating threshold than the count's probability refuses the count and says why.
