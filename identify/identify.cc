@@ -452,8 +452,10 @@ Identification Identify(const Record& record,
   std::sort(counts.begin(), counts.end(), [&](int a, int b) {
     return id.probabilities[a] > id.probabilities[b];
   });
+  // The estimate is the most probable count's fit, so that count must be one a stated width may
+  // have; a less probable count above width_max_count only adds its own fit to the agreement.
   if (counts.empty() || mass < options.width_count_mass ||
-      *std::max_element(counts.begin(), counts.end()) > options.width_max_count) {
+      counts.front() > options.width_max_count) {
     width_reason =
         "width: not identifiable (needs the count: other rollers' impacts would pass "
         "for entry events)";

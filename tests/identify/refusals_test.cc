@@ -114,7 +114,8 @@ TEST(Refusals, PairOnAnotherRollersLagIsConfirmedWhereEachRollerIsAlone) {
 // 5, the evidence tempered so that P(2) < 1, and a stating threshold of 1 so that the count is
 // refused. The width is then the stated count's, its interval at least as wide; asking the likely
 // counts to hold all of the probability refuses it again, and so does a likely count (3, at a
-// higher temperature) whose own fit does not resolve the pair.
+// higher temperature) whose own fit does not resolve the pair, also when 3 is above
+// width_max_count; a most probable count above width_max_count refuses it.
 TEST(Refusals, WidthWithoutACountWhenEveryLikelyCountGivesTheSamePair) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0, 1.5, 0}, {5, 1.5, 26}}, 3));
   IdentifyOptions o = SignalModelOptions();
@@ -155,6 +156,19 @@ TEST(Refusals, WidthWithoutACountWhenEveryLikelyCountGivesTheSamePair) {
   EXPECT_FALSE(two_counts.width_identifiable) << two_counts.BriefReport();
   EXPECT_TRUE(spallkit::testing::HasReason(two_counts, "with 3 defective rollers"))
       << two_counts.BriefReport();
+
+  // A likely count above width_max_count is not a refusal by itself: its own fit must agree too
+  // (here it does not resolve the pair, as above). The most probable count above it is one.
+  o.width_max_count = 2;
+  const Identification above_max = IdentifyRecord(r, 1200, 10000, o);
+  EXPECT_FALSE(above_max.width_identifiable) << above_max.BriefReport();
+  EXPECT_TRUE(spallkit::testing::HasReason(above_max, "with 3 defective rollers"))
+      << above_max.BriefReport();
+  o.width_max_count = 1;
+  const Identification most_probable_above = IdentifyRecord(r, 1200, 10000, o);
+  EXPECT_FALSE(most_probable_above.width_identifiable) << most_probable_above.BriefReport();
+  EXPECT_TRUE(spallkit::testing::HasReason(most_probable_above, "needs the count"))
+      << most_probable_above.BriefReport();
 }
 
 // A width beyond the calibration's widest (IdentifyOptions::width_max_diameter_fraction) is not
