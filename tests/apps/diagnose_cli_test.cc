@@ -89,8 +89,7 @@ TEST(DiagnoseCli, JsonOutWritesTheJsonBesideTheTextSummary) {
   EXPECT_NE(both.out.find("VERDICT: outer_race"), std::string::npos) << both.out;
   const Result json = RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --json");
   ASSERT_EQ(json.code, 0) << json.err;
-  std::ifstream in(json_path);
-  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string written = spallkit::testing::ReadTextFile(json_path);
   EXPECT_EQ(written, json.out);
   EXPECT_EQ(nlohmann::json::parse(written)["verdict"], "outer_race");
 

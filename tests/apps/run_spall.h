@@ -14,6 +14,12 @@
 
 namespace spallkit::testing {
 
+// The whole of a file (empty if it cannot be read): what a `spall` run wrote.
+inline std::string ReadTextFile(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 struct SpallResult {
   int code = -1;
   std::string out, err;
@@ -37,10 +43,7 @@ inline SpallResult RunSpall(const std::string& args, int timeout_s = 0) {
   while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
   const int status = pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  {
-    std::ifstream e(err_path);
-    r.err.assign(std::istreambuf_iterator<char>(e), {});
-  }
+  r.err = ReadTextFile(err_path);
   std::filesystem::remove(err_path);
   return r;
 }

@@ -50,8 +50,7 @@ TEST(IdentifyCli, TextReportAndJsonOut) {
   EXPECT_NE(r.out.find("depth: not identifiable"), std::string::npos);
   const auto json = RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json");
   ASSERT_EQ(json.code, 0) << json.err;
-  std::ifstream in(json_path);
-  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string written = spallkit::testing::ReadTextFile(json_path);
   EXPECT_EQ(written, json.out);
   EXPECT_EQ(nlohmann::json::parse(written)["defective_rollers"]["count"], 1);
 }
