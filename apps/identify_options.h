@@ -24,6 +24,7 @@ struct IdentifyStatementOptions {
   CLI::Option* temperatures_option = nullptr;
   bool pattern_per_parity = false;
   bool width_needs_count = false;
+  bool count_without_cage_hump = false;
 
   void Add(CLI::App& sub) {
     probability_option =
@@ -54,6 +55,10 @@ struct IdentifyStatementOptions {
                  width_needs_count,
                  "state the width only with a stated count (by default also when every likely "
                  "count's configuration gives the same entry-exit pair: docs/IDENTIFY.md)");
+    sub.add_flag("--count-without-cage-hump",
+                 count_without_cage_hump,
+                 "state a count also where the cage average by itself ranks no defective roller "
+                 "first (by default the sideband pattern alone states no count: docs/IDENTIFY.md)");
   }
 
   // Throws InputError naming the option when a given value is out of range. The ranges are the
@@ -86,6 +91,7 @@ struct IdentifyStatementOptions {
             });
     if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
     if (width_needs_count) o->width_over_uncertain_count = false;
+    if (count_without_cage_hump) o->count_needs_cage_hump = false;
   }
 };
 

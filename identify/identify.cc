@@ -212,6 +212,35 @@ std::string WidthForCount(int k,
 
 }  // namespace
 
+std::string CountRefusal(const CountFit& cf, const IdentifyOptions& options) {
+  auto argmax = [](const std::vector<double>& p) {
+    return static_cast<int>(std::max_element(p.begin(), p.end()) - p.begin());
+  };
+  const int k = cf.MostProbable();
+  if (k == 0)
+    return "count: not identifiable (no load-zone hump in the cage-synchronous average: the "
+           "impacts are not load-modulated)";
+  if (options.count_needs_cage_hump && !cf.probability_cage.empty() &&
+      argmax(cf.probability_cage) == 0)
+    return "count: not identifiable (the cage-synchronous average by itself shows no load-zone "
+           "hump: P(0) = " +
+           FormatNumber("%.2f", cf.probability_cage[0]) +
+           " from it; the sideband pattern alone does not state a count)";
+  if (cf.probability[k] < options.min_count_probability)
+    return "count: uncertain (most probable " + std::to_string(k) +
+           " with P = " + FormatNumber("%.2f", cf.probability[k]) + ", below the " +
+           FormatNumber("%.2f", options.min_count_probability) + " a count needs)";
+  const bool disagree =
+      cf.sideband_lines > 0 && argmax(cf.probability_cage) != argmax(cf.probability_sidebands) &&
+      *std::max_element(cf.probability_cage.begin(), cf.probability_cage.end()) > 0.9 &&
+      *std::max_element(cf.probability_sidebands.begin(), cf.probability_sidebands.end()) > 0.9;
+  if (disagree)
+    return "count: not identifiable (cage average says " +
+           std::to_string(argmax(cf.probability_cage)) + ", sidebands say " +
+           std::to_string(argmax(cf.probability_sidebands)) + ")";
+  return "";
+}
+
 bool IdentifyOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) {
     if (error) *error = m;
@@ -359,26 +388,8 @@ Identification Identify(const Record& record,
     const int k = cf.MostProbable();
     const HumpFit& best = cf.best[k];
     id.load_zone_half_angle_rad = k > 0 ? best.shape.half_angle_rad : 0.0;
-    auto argmax = [](const std::vector<double>& p) {
-      return static_cast<int>(std::max_element(p.begin(), p.end()) - p.begin());
-    };
-    const bool disagree =
-        cf.sideband_lines > 0 && argmax(cf.probability_cage) != argmax(cf.probability_sidebands) &&
-        *std::max_element(cf.probability_cage.begin(), cf.probability_cage.end()) > 0.9 &&
-        *std::max_element(cf.probability_sidebands.begin(), cf.probability_sidebands.end()) > 0.9;
-    if (k == 0) {
-      count_reason =
-          ("count: not identifiable (no load-zone hump in the cage-synchronous "
-           "average: the impacts are not load-modulated)");
-    } else if (cf.probability[k] < options.min_count_probability) {
-      count_reason = ("count: uncertain (most probable " + std::to_string(k) +
-                      " with P = " + FormatNumber("%.2f", cf.probability[k]) + ", below the " +
-                      FormatNumber("%.2f", options.min_count_probability) + " a count needs)");
-    } else if (disagree) {
-      count_reason = ("count: not identifiable (cage average says " +
-                      std::to_string(argmax(cf.probability_cage)) + ", sidebands say " +
-                      std::to_string(argmax(cf.probability_sidebands)) + ")");
-    } else {
+    count_reason = CountRefusal(cf, options);
+    if (count_reason.empty()) {
       id.count_identifiable = true;
       id.count = k;
       id.position_probability = cf.configuration_probability[k];
@@ -628,6 +639,7 @@ std::string Identification::ToJson(int indent) const {
   settings["min_count_probability"] = options.min_count_probability;
   settings["width_max_count"] = options.width_max_count;
   settings["width_over_uncertain_count"] = options.width_over_uncertain_count;
+  settings["count_needs_cage_hump"] = options.count_needs_cage_hump;
   settings["max_count"] =
       options.count.max_count >= 0 ? ordered_json(options.count.max_count) : ordered_json(nullptr);
   settings["radial_load_n"] =

@@ -50,6 +50,15 @@ struct IdentifyOptions {
   // on the tuning sets (docs/IDENTIFY.md) the counts stated at P 0.5-0.6 were right 8 times of
   // 20, those at 0.6-0.65 11 of 12.
   double min_count_probability = 0.6;
+  // A count is stated only where the cage-synchronous average (feature A) by itself ranks a
+  // count of one or more first: the load-zone humps are the count's physical evidence, and the
+  // f_c sideband pattern alone (feature B) reads one roller's odd and even spin harmonics as a
+  // second roller (docs/IDENTIFY.md, "Count and positions"). On the six lumped validation
+  // sets no count is stated where feature A ranks 0 first; on the hybrid records of the paper's
+  // width experiment all 8 such statements were wrong (0.46 mm spalls stated as 2 or 3 at
+  // P 0.62-0.95; docs/IDENTIFY.md, "Hybrid records of the paper's experiment"). false: the
+  // combined probability alone decides.
+  bool count_needs_cage_hump = true;
   WidthFitOptions width;
   // Width band: Hann window centred on the diagnosis band, +/- max(its width, this) (Hz).
   double width_band_min_half_width_hz = 2000.0;
@@ -211,5 +220,10 @@ Identification Identify(const Record& record,
                         double shaft_hz,
                         const dsp::Diagnosis& diagnosis,
                         const IdentifyOptions& options = {});
+
+// Why a count fit's most probable count is not stated ("count: ..."), or empty when it is: no
+// hump at all, none from the cage average by itself (count_needs_cage_hump), a probability below
+// min_count_probability, or the two features confidently naming different counts.
+std::string CountRefusal(const CountFit& fit, const IdentifyOptions& options);
 
 }  // namespace spallkit::identify

@@ -82,7 +82,7 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
 
 // The sideband feature's model with one pattern per parity (not the default) is chosen on the
 // command line and said in the settings; the sample record is one roller either way.
-TEST(IdentifyCli, SidebandPatternAndWidthRuleAreSettings) {
+TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
   const auto r = RunSpall("identify " + kSample +
                           " --bearing N205EM --rpm 1200 --json --sideband-pattern-per-parity");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -100,6 +100,11 @@ TEST(IdentifyCli, SidebandPatternAndWidthRuleAreSettings) {
   ASSERT_EQ(strict.code, 0) << strict.err;
   EXPECT_FALSE(
       nlohmann::json::parse(strict.out)["settings"]["width_over_uncertain_count"].get<bool>());
+  EXPECT_TRUE(nlohmann::json::parse(base.out)["settings"]["count_needs_cage_hump"].get<bool>());
+  const auto loose = RunSpall("identify " + kSample +
+                              " --bearing N205EM --rpm 1200 --json --count-without-cage-hump");
+  ASSERT_EQ(loose.code, 0) << loose.err;
+  EXPECT_FALSE(nlohmann::json::parse(loose.out)["settings"]["count_needs_cage_hump"].get<bool>());
 }
 
 // A clipped record: the diagnosis warns, and so does the identification's text report (the

@@ -221,6 +221,29 @@ TEST(Refusals, ContactReleaseShiftsTheWidthAndNeedsTheLoad) {
 }
 
 // The diagnosis itself needs 4 cage revolutions; a stricter requirement refuses the count.
+// The count's statement rules on a count fit made by hand (IdentifyOptions::
+// count_needs_cage_hump): the combined evidence names two rollers at P 0.95, carried by the
+// sideband feature alone while the cage average by itself ranks no roller first (the hybrid's
+// 0.46 mm spalls, docs/IDENTIFY.md): refused, and stated when the rule is off or when the cage
+// average ranks a roller first.
+TEST(Refusals, NoCountWhereTheCageAverageAloneShowsNoHump) {
+  CountFit fit;
+  fit.sideband_lines = 12;
+  fit.probability = {0.02, 0.03, 0.95, 0.0};
+  fit.probability_cage = {0.45, 0.35, 0.20, 0.0};
+  fit.probability_sidebands = {0.0, 0.05, 0.92, 0.03};
+  IdentifyOptions o;
+  const std::string why = CountRefusal(fit, o);
+  EXPECT_NE(why.find("shows no load-zone hump: P(0) = 0.45"), std::string::npos) << why;
+  o.count_needs_cage_hump = false;
+  EXPECT_EQ(CountRefusal(fit, o), "");
+  o.count_needs_cage_hump = true;
+  fit.probability_cage = {0.35, 0.45, 0.20, 0.0};
+  EXPECT_EQ(CountRefusal(fit, o), "");
+  fit.probability = {0.5, 0.3, 0.2, 0.0};  // no hump at all in the combined evidence
+  EXPECT_NE(CountRefusal(fit, o).find("not load-modulated"), std::string::npos);
+}
+
 TEST(Refusals, TooFewCageRevolutionsForACount) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0}}));  // 8.3 revolutions
   IdentifyOptions o;
