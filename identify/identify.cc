@@ -231,7 +231,8 @@ std::string CountRefusal(const CountFit& cf, const IdentifyOptions& options) {
            " with P = " + FormatNumber("%.2f", cf.probability[k]) + ", below the " +
            FormatNumber("%.2f", options.min_count_probability) + " a count needs)";
   const bool disagree =
-      cf.sideband_lines > 0 && argmax(cf.probability_cage) != argmax(cf.probability_sidebands) &&
+      cf.sideband_lines > 0 && !cf.probability_cage.empty() && !cf.probability_sidebands.empty() &&
+      argmax(cf.probability_cage) != argmax(cf.probability_sidebands) &&
       *std::max_element(cf.probability_cage.begin(), cf.probability_cage.end()) > 0.9 &&
       *std::max_element(cf.probability_sidebands.begin(), cf.probability_sidebands.end()) > 0.9;
   if (disagree)
