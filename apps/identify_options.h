@@ -25,6 +25,7 @@ struct IdentifyStatementOptions {
   bool pattern_per_parity = false;
   bool width_needs_count = false;
   bool count_without_cage_hump = false;
+  bool combine_per_count = false;
 
   void Add(CLI::App& sub) {
     probability_option =
@@ -55,6 +56,10 @@ struct IdentifyStatementOptions {
                  width_needs_count,
                  "state the width only with a stated count (by default also when every likely "
                  "count's configuration gives the same entry-exit pair: docs/IDENTIFY.md)");
+    sub.add_flag("--combine-per-count",
+                 combine_per_count,
+                 "combine the count's two features per K, as the temperatures were chosen "
+                 "(measured, not the default: docs/IDENTIFY.md)");
     sub.add_flag("--count-without-cage-hump",
                  count_without_cage_hump,
                  "state a count also where the cage average by itself ranks no defective roller "
@@ -92,6 +97,7 @@ struct IdentifyStatementOptions {
     if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
     if (width_needs_count) o->width_over_uncertain_count = false;
     if (count_without_cage_hump) o->count_needs_cage_hump = false;
+    if (combine_per_count) o->count.combine_per_count = true;
   }
 };
 

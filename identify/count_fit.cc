@@ -927,7 +927,10 @@ CountFit FitRollerCount(const CageAverage& average,
       out.log_evidence_cage[k] = LogSumExp(ta) - ln_configs;
       out.log_evidence_sidebands[k] = LogSumExp(tb) - ln_configs;
       const double lse = LogSumExp(tc);
-      out.log_evidence[k] = lse - ln_configs;
+      out.log_evidence[k] = o.combine_per_count
+                                ? out.log_evidence_cage[k] / o.temperature_cage +
+                                      out.log_evidence_sidebands[k] / o.temperature_sidebands
+                                : lse - ln_configs;
       const int best = static_cast<int>(std::max_element(tc.begin(), tc.end()) - tc.begin());
       out.best[k] = fits[k][best].fit;
       out.configuration_probability[k] = std::exp(tc[best] - lse);

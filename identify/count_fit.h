@@ -94,6 +94,10 @@ struct CountFitOptions {
   // "Calibration"): the values that maximise the mean log probability of the true count.
   double temperature_cage = 5.0;
   double temperature_sidebands = 28.0;
+  // Combine the features per K (each feature's evidence averaged over the configurations of K,
+  // then tempered), as the temperatures were chosen (scripts/choose_temperatures.py), instead of
+  // per configuration (tempered, then averaged). Measured, not the default (docs/IDENTIFY.md).
+  bool combine_per_count = false;
   // Feature B is evaluated only for configurations whose feature-A chi2 is within this of the
   // best (the others cannot matter; B is the costly part).
   double sideband_screen_chi2 = 60.0;

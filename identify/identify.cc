@@ -641,6 +641,7 @@ std::string Identification::ToJson(int indent) const {
   settings["width_max_count"] = options.width_max_count;
   settings["width_over_uncertain_count"] = options.width_over_uncertain_count;
   settings["count_needs_cage_hump"] = options.count_needs_cage_hump;
+  settings["combine_per_count"] = options.count.combine_per_count;
   settings["max_count"] =
       options.count.max_count >= 0 ? ordered_json(options.count.max_count) : ordered_json(nullptr);
   settings["radial_load_n"] =

@@ -39,6 +39,31 @@ TEST(CountFit, OneDefectiveRoller) {
   EXPECT_EQ(id.positions_deg, (std::vector<double>{0.0}));
 }
 
+// CountFitOptions::combine_per_count: each feature's evidence is averaged over the
+// configurations of K and then tempered, so the combined log evidence is the tempered sum of the
+// two features' (the combination scripts/choose_temperatures.py calibrates); the default tempers
+// each configuration first and differs. Either way this record counts one roller.
+TEST(CountFit, CombinedPerCountIsTheTemperedSumOfTheFeatures) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 10, {{0, 1.38, 0}}));
+  IdentifyOptions o;
+  o.count.combine_per_count = true;
+  const Identification id = IdentifyRecord(r, 1200, 10000, o);
+  const CountFit& f = id.count_fit;
+  ASSERT_GT(f.sideband_lines, 0);
+  for (size_t k = 1; k < f.log_evidence.size(); ++k) {
+    if (!std::isfinite(f.log_evidence[k])) continue;
+    EXPECT_NEAR(f.log_evidence[k],
+                f.log_evidence_cage[k] / o.count.temperature_cage +
+                    f.log_evidence_sidebands[k] / o.count.temperature_sidebands,
+                1e-9)
+        << k;
+  }
+  ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
+  EXPECT_EQ(id.count, 1);
+  const Identification by_configuration = IdentifyRecord(r, 1200, 10000);
+  EXPECT_NE(by_configuration.count_fit.log_evidence[2], f.log_evidence[2]);
+}
+
 // Two spalls four slots apart: count 2, positions 0 and 4 x 360/13 = 110.8 deg.
 TEST(CountFit, TwoRollersFourSlotsApart) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 10, {{0}, {4, 1.38, 120}}));

@@ -105,6 +105,13 @@ TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
                               " --bearing N205EM --rpm 1200 --json --count-without-cage-hump");
   ASSERT_EQ(loose.code, 0) << loose.err;
   EXPECT_FALSE(nlohmann::json::parse(loose.out)["settings"]["count_needs_cage_hump"].get<bool>());
+  EXPECT_FALSE(nlohmann::json::parse(base.out)["settings"]["combine_per_count"].get<bool>());
+  const auto per_count =
+      RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json --combine-per-count");
+  ASSERT_EQ(per_count.code, 0) << per_count.err;
+  const nlohmann::json jp = nlohmann::json::parse(per_count.out);
+  EXPECT_TRUE(jp["settings"]["combine_per_count"].get<bool>());
+  EXPECT_EQ(jp["defective_rollers"]["count"], 1);
 }
 
 // A clipped record: the diagnosis warns, and so does the identification's text report (the
