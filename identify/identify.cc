@@ -102,12 +102,13 @@ std::string WidthForCount(int k,
   const int block = std::max(1, static_cast<int>(fs / id->cage_hz));
   const int lookahead = static_cast<int>(std::ceil((wo.max_delay_s + wo.tail_s) * fs));
   const HumpFit& humps = id->count_fit.best[k];
-  id->width_fit = FitEntryExit(
-      sew,
-      fs,
-      LoadZoneSamples(humps, id->cage_average, z, id->cage_hz, fs, sew.size(), 0.0, lookahead),
-      block,
-      wo);
+  // The samples in the load zone: every roller's (others_ratio 0), or where one roller's hump
+  // stands out of the others' (LoadZoneSamples).
+  auto zone = [&](double others_ratio) {
+    return LoadZoneSamples(
+        humps, id->cage_average, z, id->cage_hz, fs, sew.size(), others_ratio, lookahead);
+  };
+  id->width_fit = FitEntryExit(sew, fs, zone(0.0), block, wo);
   // The other rollers' lag nearest to the delay, if it lies within the window.
   std::optional<double> cross_lag;  // the other rollers' lag the delay lies on, if any
   for (double lag : cross_lags) {
@@ -120,18 +121,11 @@ std::string WidthForCount(int k,
   // the load zone to itself: there the other rollers' impacts are weak, a release and landing is
   // not (IdentifyOptions::width_exclusive_ratio).
   if (cross_lag && id->width_fit.usable && options.width_exclusive_ratio > 0) {
-    const std::vector<char> exclusive = LoadZoneSamples(humps,
-                                                        id->cage_average,
-                                                        z,
-                                                        id->cage_hz,
-                                                        fs,
-                                                        sew.size(),
-                                                        options.width_exclusive_ratio,
-                                                        lookahead);
     // The same pair, judged before its bootstrap (its interval is needed only when it is).
     WidthFitOptions quick = wo;
     quick.bootstrap = 0;
-    id->width_fit_exclusive = FitEntryExit(sew, fs, exclusive, block, quick);
+    id->width_fit_exclusive =
+        FitEntryExit(sew, fs, zone(options.width_exclusive_ratio), block, quick);
     const WidthFit& x = id->width_fit_exclusive;
     if (x.usable &&
         std::abs(x.best.delay_s - id->width_fit.best.delay_s) < options.cross_lag_half_width_s &&
