@@ -137,18 +137,10 @@ std::string WidthForCount(int k,
     }
   }
   const WidthFit& wf = id->width_fit;
-  // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
-  // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
-  const double release_angle =
-      options.width_contact_release ? 2.0 * std::sqrt(id->contact_approach_m / d) : 0.0;
-  auto to_width = [&](double dt, double scale) {
-    const double t = std::max(0.0, (dt - options.width_calibration_offset_s) / scale);
-    return d * std::sin(std::min(0.5 * kPi, kPi * id->spin_hz * t + release_angle));
-  };
-  const double scale = options.width_calibration_scale;
+  auto to_width = [&](double dt) { return WidthOfDelay(dt, d, *id, options); };
   const double spread = 1.645 * options.width_calibration_relative_sd;  // 90 % of the relation's
   const double dt_res = std::max(2.0 / fs, 2.0 * wf.best.rise_s);
-  id->width_resolution_m = to_width(dt_res, scale);
+  id->width_resolution_m = to_width(dt_res);
   std::string why;
   if (!wf.usable) {
     why = "width: not identifiable (" + wf.message + ")";
@@ -181,9 +173,9 @@ std::string WidthForCount(int k,
         "ring-down: the interval reaches below " +
         FormatNumber("%.2f", id->width_resolution_m * 1e3) + " mm)";
   } else {
-    id->width_m = to_width(wf.best.delay_s, scale);
-    id->width_low_m = to_width(wf.delay_low_s, scale) * (1.0 - spread);
-    id->width_high_m = to_width(wf.delay_high_s, scale) * (1.0 + spread);
+    id->width_m = to_width(wf.best.delay_s);
+    id->width_low_m = to_width(wf.delay_low_s) * (1.0 - spread);
+    id->width_high_m = to_width(wf.delay_high_s) * (1.0 + spread);
     const double half = 0.5 * (id->width_high_m - id->width_low_m);
     const double widest = options.width_max_diameter_fraction * d;
     if (id->width_m > widest) {
@@ -205,6 +197,26 @@ std::string WidthForCount(int k,
 }
 
 }  // namespace
+
+namespace {
+// The roller rolls sqrt(d delta) past the leading edge before it is released and lands
+// sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
+double ReleaseAngle(double d, const Identification& id, const IdentifyOptions& o) {
+  return o.width_contact_release ? 2.0 * std::sqrt(id.contact_approach_m / d) : 0.0;
+}
+}  // namespace
+
+double WidthOfDelay(double delay_s, double d, const Identification& id, const IdentifyOptions& o) {
+  const double t =
+      std::max(0.0, (delay_s - o.width_calibration_offset_s) / o.width_calibration_scale);
+  return d * std::sin(std::min(0.5 * kPi, kPi * id.spin_hz * t + ReleaseAngle(d, id, o)));
+}
+
+double DelayOfWidth(double width_m, double d, const Identification& id, const IdentifyOptions& o) {
+  const double angle = std::asin(std::clamp(width_m / d, 0.0, 1.0)) - ReleaseAngle(d, id, o);
+  if (!(angle > 0.0) || !(id.spin_hz > 0.0)) return 0.0;
+  return o.width_calibration_scale * angle / (kPi * id.spin_hz) + o.width_calibration_offset_s;
+}
 
 std::string CountRefusal(const CountFit& cf, const IdentifyOptions& options) {
   auto argmax = [](const std::vector<double>& p) {

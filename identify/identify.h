@@ -221,6 +221,12 @@ Identification Identify(const Record& record,
                         const dsp::Diagnosis& diagnosis,
                         const IdentifyOptions& options = {});
 
+// The width relation (docs/IDENTIFY.md, "Width"): the spall width of a release-landing delay
+// on a roller of diameter d, at the identification's spin rate and contact approach, and its
+// inverse (0 for a width too narrow to release the roller).
+double WidthOfDelay(double delay_s, double d, const Identification& id, const IdentifyOptions& o);
+double DelayOfWidth(double width_m, double d, const Identification& id, const IdentifyOptions& o);
+
 // Why a count fit's most probable count is not stated ("count: ..."), or empty when it is: no
 // hump at all, none from the cage average by itself (count_needs_cage_hump), a probability below
 // min_count_probability, or the two features confidently naming different counts.

@@ -174,6 +174,12 @@ ValidationReport ValidateOnFiles(const std::vector<std::string>& files,
       r.chi2_scale_sidebands = id.count_fit.chi2_scale_sidebands;
       r.log_evidence_cage = id.count_fit.log_evidence_cage;
       r.log_evidence_sidebands = id.count_fit.log_evidence_sidebands;
+      if (!id.count_fit.best.empty()) {
+        const HumpShape& shape = id.count_fit.best[id.count_fit.MostProbable()].shape;
+        r.hump_exponent = shape.exponent;
+        r.hump_edge_gain = shape.edge_gain;
+        r.hump_smear_deg = shape.smear_rad * 180.0 / kPi;
+      }
       if (id.count_identifiable) r.count_probability = id.probabilities[id.count];
       if (id.count_identifiable && id.count == r.true_count) {
         std::vector<int> slots;
@@ -204,9 +210,12 @@ ValidationReport ValidateOnFiles(const std::vector<std::string>& files,
         r.exclusive_significance = id.width_fit_exclusive.delay_power_significance;
       }
       r.width_from_exclusive_zone = id.width_from_exclusive_zone;
-      if (r.true_count > 0 && id.spin_hz > 0)
+      if (r.true_count > 0 && id.spin_hz > 0) {
         r.true_delay_s = 2.0 * std::asin(std::min(1.0, r.true_width_m / g.element_diameter_m)) /
                          (2.0 * kPi * id.spin_hz);
+        if (id.width_fit.usable)
+          r.true_release_delay_s = DelayOfWidth(r.true_width_m, g.element_diameter_m, id, io);
+      }
       for (size_t i = 0; i < id.reasons.size(); ++i) {
         if (i) r.reasons += "; ";
         r.reasons += id.reasons[i];
@@ -322,7 +331,8 @@ std::string ValidationReport::ToCsv() const {
         "width_high_mm,true_delay_ms,delay_ms,delay_low_ms,delay_high_ms,delay_significance,"
         "pair_power_ratio,exclusive_delay_ms,exclusive_pair_power_ratio,exclusive_significance,"
         "width_from_exclusive_zone,cpu_s,"
-        "log_evidence_cage,log_evidence_sidebands,reasons\n";
+        "log_evidence_cage,log_evidence_sidebands,true_release_delay_ms,hump_exponent,"
+        "hump_edge_gain,hump_smear_deg,reasons\n";
   auto joined = [](const std::vector<double>& v) {
     std::string out;
     for (size_t i = 0; i < v.size(); ++i) {
@@ -362,7 +372,10 @@ std::string ValidationReport::ToCsv() const {
        << FormatNumber("%.3g", r.exclusive_pair_power_ratio) << ","
        << FormatNumber("%.3g", r.exclusive_significance) << "," << r.width_from_exclusive_zone
        << "," << FormatNumber("%.3f", r.cpu_s) << "," << joined(r.log_evidence_cage) << ","
-       << joined(r.log_evidence_sidebands) << ",\"" << reasons << "\"\n";
+       << joined(r.log_evidence_sidebands) << ","
+       << FormatNumber("%.4f", r.true_release_delay_s * 1e3) << ","
+       << FormatNumber("%.3g", r.hump_exponent) << "," << FormatNumber("%.3g", r.hump_edge_gain)
+       << "," << FormatNumber("%.3g", r.hump_smear_deg) << ",\"" << reasons << "\"\n";
   }
   return os.str();
 }

@@ -43,6 +43,9 @@ struct ValidatedRecord {
   double true_width_m = 0.0;    // of the first defect (all equal in the validation sweeps)
   double speed_rpm = 0.0, load_n = 0.0;
   double true_delay_s = 0.0;  // geometric entry-exit delay at the identified spin rate
+  // The release-landing delay the width relation gives for the true width (what the width fit
+  // should find; IdentifyOptions::width_contact_release), 0 when no width fit ran.
+  double true_release_delay_s = 0.0;
   // What Identify said.
   std::string verdict;
   bool count_stated = false;
@@ -53,6 +56,8 @@ struct ValidatedRecord {
   double p_cage = 0.0, p_sidebands = 0.0;     // ...and its probability
   double chi2_scale_cage = 0.0, chi2_scale_sidebands = 0.0;
   std::vector<double> log_evidence_cage, log_evidence_sidebands;  // per K, untempered
+  // Feature A's hump shape of the most probable K's best configuration (0 when no count fit).
+  double hump_exponent = 0.0, hump_edge_gain = 0.0, hump_smear_deg = 0.0;
   bool positions_right = false;     // stated slots equal the truth's (canonical form)
   bool positions_mirrored = false;  // ...equal the truth's mirror image (direction reversed)
   bool width_stated = false;

@@ -212,6 +212,13 @@ TEST(Refusals, ContactReleaseShiftsTheWidthAndNeedsTheLoad) {
       released.width_m,
       d * std::sin(std::asin(edges.width_m / d) + 2.0 * std::sqrt(released.contact_approach_m / d)),
       1e-9);
+  // The relation as exported (WidthOfDelay / DelayOfWidth, identify-check's true release delay):
+  // the stated width is that of the fitted delay, the inverse gives the delay back, and a spall
+  // narrower than 2 sqrt(d delta) is never released (no delay).
+  const double delay = released.width_fit.best.delay_s;
+  EXPECT_NEAR(WidthOfDelay(delay, d, released, o), released.width_m, 1e-12);
+  EXPECT_NEAR(DelayOfWidth(released.width_m, d, released, o), delay, 1e-12);
+  EXPECT_EQ(DelayOfWidth(1.9 * std::sqrt(d * released.contact_approach_m), d, released, o), 0.0);
   const BearingGeometry g = CatalogBearing("N205EM");
   const Identification no_load = Identify(r, g, 15.0, dsp::Diagnose(r, g, 15.0), o);
   ASSERT_TRUE(no_load.count_identifiable) << no_load.BriefReport();

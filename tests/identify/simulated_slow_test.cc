@@ -1,10 +1,15 @@
 // Identification on short records of spallkit's simulator (lumped model, horizontal channel)
 // against the truth of their scenes: a spalled roller is counted and placed, a healthy bearing gets
-// no count, and two spalled rollers never get a wrong count. About 3 s of CPU per record
-// (simulation included), hence the `slow` label.
+// no count, two spalled rollers never get a wrong count, and the validation harness
+// (identify-check) reads a simulated file's truth. About 3 s of CPU per record (simulation
+// included), hence the `slow` label.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -12,6 +17,7 @@
 #include "core/constants.h"
 #include "dsp/diagnose.h"
 #include "identify/identify.h"
+#include "identify/validation.h"
 #include "sim/bearing/record_adapter.h"
 #include "sim/bearing/scene.h"
 #include "sim/bearing/simulation.h"
@@ -102,6 +108,80 @@ TEST(SimulatedRecords, TwoSpalledRollersGetNoWrongCount) {
     EXPECT_LE(id.width_low_m, 2.27e-3) << id.BriefReport();
     EXPECT_GE(id.width_high_m, 2.27e-3) << id.BriefReport();
   }
+}
+
+// The validation harness (identify-check) on one simulated file: the truth comes from the file's
+// scene, the clean record is identified as Identify alone would, and the CSV row carries the
+// fit's delay beside the geometric and the release-landing delay of the true width.
+TEST(SimulatedRecords, ValidationHarnessReadsTheTruthAndWritesOneRowPerSnr) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "spallkit_validation_case.h5").string();
+  {
+    const sim::Scene scene =
+        sim::LoadScene(SPALLKIT_SOURCE_DIR "/datasets/scenes/paper-verification.toml",
+                       {"model.fidelity=\"lumped\"",
+                        "run.duration_s=0.8",
+                        "run.outputs=[\"acceleration\"]",
+                        "friction.mu_static=0.15",
+                        "friction.mu_dynamic=0.12",
+                        "operation.speed_rpm=1500.0",
+                        "operation.radial_load_n=10000.0",
+                        "defects.0.width_mm=2.0",
+                        "defects.0.depth_mm=0.8",
+                        "defects.0.angle_deg=40.0"});
+    sim::SimulationOptions so;
+    so.output_path = path;
+    sim::Simulation simulation(scene, so);
+    ASSERT_TRUE(simulation.Run().completed);
+  }
+  ValidationOptions o;
+  o.channel = "/signals/accel_z";
+  o.snr_db = {std::numeric_limits<double>::infinity(), 10.0};
+  o.identify.count.sensor_angle_rad = 0.5 * kPi;
+  const ValidationReport report = ValidateOnFiles({path}, o);
+  std::filesystem::remove(path);
+  ASSERT_EQ(report.records.size(), 2u);
+  const ValidatedRecord& clean = report.records[0];
+  EXPECT_EQ(clean.true_count, 1);
+  EXPECT_EQ(clean.true_slots, (std::vector<int>{0}));
+  EXPECT_NEAR(clean.true_width_m, 2.0e-3, 1e-9);
+  EXPECT_NEAR(clean.speed_rpm, 1500.0, 1e-9);
+  EXPECT_NEAR(clean.load_n, 10000.0, 1e-9);
+  EXPECT_EQ(clean.verdict, "rolling_element") << clean.reasons;
+  ASSERT_TRUE(clean.count_stated) << clean.reasons;
+  EXPECT_EQ(clean.count, 1);
+  EXPECT_TRUE(clean.positions_right);
+  // The roller is released after the leading edge and lands before the trailing one: the delay
+  // the relation expects is shorter than the edge-to-edge time, and the fit finds it.
+  EXPECT_GT(clean.true_release_delay_s, 0.5 * clean.true_delay_s);
+  EXPECT_LT(clean.true_release_delay_s, clean.true_delay_s);
+  ASSERT_TRUE(clean.width_stated) << clean.reasons;
+  EXPECT_NEAR(clean.delay_s, clean.true_release_delay_s, 0.15 * clean.true_release_delay_s);
+  EXPECT_GE(clean.hump_exponent, 0.25);
+  EXPECT_LE(clean.hump_exponent, 6.0);
+  EXPECT_TRUE(std::isinf(clean.snr_db));
+  EXPECT_EQ(report.records[1].snr_db, 10.0);
+  // The CSV: a header and one row per record and SNR, each with the header's number of fields
+  // (the reasons are one quoted field).
+  std::istringstream csv(report.ToCsv());
+  std::string header, row;
+  ASSERT_TRUE(std::getline(csv, header));
+  EXPECT_NE(header.find("true_release_delay_ms,hump_exponent"), std::string::npos) << header;
+  auto fields = [](const std::string& line) {
+    int n = 1;
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"') quoted = !quoted;
+      n += c == ',' && !quoted;
+    }
+    return n;
+  };
+  int rows = 0;
+  while (std::getline(csv, row)) {
+    ++rows;
+    EXPECT_EQ(fields(row), fields(header)) << row;
+  }
+  EXPECT_EQ(rows, 2);
 }
 
 }  // namespace
