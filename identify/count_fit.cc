@@ -422,6 +422,15 @@ double LogSumExp(const std::vector<double>& v) {
 
 }  // namespace
 
+double HumpShape::EdgeToCentre() const {
+  // d/dq [q^p (1 + beta - beta q)] = 0 at q* = p (1 + beta) / (beta (p + 1)); beyond q = 1 the
+  // law rises all the way to the load line.
+  if (!(edge_gain > 0.0)) return 1.0;
+  const double q = exponent * (1.0 + edge_gain) / (edge_gain * (exponent + 1.0));
+  if (q >= 1.0) return 1.0;
+  return std::pow(q, exponent) * (1.0 + edge_gain * (1.0 - q));
+}
+
 bool CountFitOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) {
     if (error) *error = m;

@@ -114,6 +114,11 @@ struct HumpShape {
   bool half_angle_fixed = false;
   double sensor_angle_rad = 0.0;  // fixed: CountFitOptions::sensor_angle_rad
   bool sensor_projection = false;
+
+  // The strength law's highest value over its value on the load line, max over q of
+  // q^p (1 + beta (1 - q)): 1 for a hump that peaks on the load line, larger where the edge gain
+  // raises its flanks above its centre.
+  double EdgeToCentre() const;
 };
 
 // One fitted configuration.

@@ -198,9 +198,9 @@ std::string WidthForCount(int k,
 
 }  // namespace
 
-namespace {
 // The roller rolls sqrt(d delta) past the leading edge before it is released and lands
 // sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
+namespace {
 double ReleaseAngle(double d, const Identification& id, const IdentifyOptions& o) {
   return o.width_contact_release ? 2.0 * std::sqrt(id.contact_approach_m / d) : 0.0;
 }
@@ -236,6 +236,18 @@ std::string CountRefusal(const CountFit& cf, const IdentifyOptions& options) {
     return "count: uncertain (most probable " + std::to_string(k) +
            " with P = " + FormatNumber("%.2f", cf.probability[k]) + ", below the " +
            FormatNumber("%.2f", options.min_count_probability) + " a count needs)";
+  if (k < static_cast<int>(cf.best.size()) &&
+      cf.best[k].shape.exponent < options.min_count_hump_exponent &&
+      cf.best[k].shape.EdgeToCentre() < options.flat_hump_max_edge_to_centre)
+    return "count: not identifiable (the load-zone hump of " + std::to_string(k) +
+           " defective roller" + (k == 1 ? "" : "s") +
+           ", P = " + FormatNumber("%.2f", cf.probability[k]) +
+           ", is as flat as its shape allows (exponent " +
+           FormatNumber("%.2f", cf.best[k].shape.exponent) + " < " +
+           FormatNumber("%.2f", options.min_count_hump_exponent) + ", edges " +
+           FormatNumber("%.2f", cf.best[k].shape.EdgeToCentre()) +
+           " times its centre): wider than one roller's load zone makes it, as the merged humps "
+           "of rollers in adjacent slots are)";
   const bool disagree =
       cf.sideband_lines > 0 && !cf.probability_cage.empty() && !cf.probability_sidebands.empty() &&
       argmax(cf.probability_cage) != argmax(cf.probability_sidebands) &&
@@ -258,6 +270,10 @@ bool IdentifyOptions::IsValid(std::string* error) const {
   if (!(diametral_clearance_m >= 0)) return fail("identify: diametral clearance must be >= 0");
   if (!(roller_length_m >= 0)) return fail("identify: roller length must be >= 0");
   if (cage_bins < 12) return fail("identify: cage_bins must be >= 12");
+  if (!(min_count_hump_exponent >= 0 && std::isfinite(min_count_hump_exponent)))
+    return fail("identify: min_count_hump_exponent must be >= 0");
+  if (!(flat_hump_max_edge_to_centre >= 1 && std::isfinite(flat_hump_max_edge_to_centre)))
+    return fail("identify: flat_hump_max_edge_to_centre must be >= 1");
   if (min_cage_revolutions < 2) return fail("identify: min_cage_revolutions must be >= 2");
   if (sideband_harmonics < 0 || sideband_orders < 1)
     return fail("identify: sideband_harmonics must be >= 0 and sideband_orders >= 1");
@@ -647,6 +663,8 @@ std::string Identification::ToJson(int indent) const {
   settings["width_max_count"] = options.width_max_count;
   settings["width_over_uncertain_count"] = options.width_over_uncertain_count;
   settings["count_needs_cage_hump"] = options.count_needs_cage_hump;
+  settings["min_count_hump_exponent"] = options.min_count_hump_exponent;
+  settings["flat_hump_max_edge_to_centre"] = options.flat_hump_max_edge_to_centre;
   settings["combine_per_count"] = options.count.combine_per_count;
   settings["max_count"] =
       options.count.max_count >= 0 ? ordered_json(options.count.max_count) : ordered_json(nullptr);

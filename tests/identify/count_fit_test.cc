@@ -201,6 +201,26 @@ TEST(CountFit, HumpFourierOfAFlatHumpIsItsMean) {
   EXPECT_GT(m[1], m[2]);
 }
 
+// The strength law's edge-to-centre ratio against a brute-force maximum over q.
+TEST(CountFit, EdgeToCentreIsTheStrengthLawsMaximum) {
+  for (double p : {0.25, 0.5, 1.0, 3.0})
+    for (double beta : {0.0, 0.3, 1.06, 7.0, 20.0}) {
+      HumpShape s;
+      s.exponent = p;
+      s.edge_gain = beta;
+      double best = 0.0;
+      for (int i = 1; i <= 100000; ++i) {
+        const double q = i / 100000.0;
+        best = std::max(best, std::pow(q, p) * (1.0 + beta * (1.0 - q)));
+      }
+      EXPECT_NEAR(s.EdgeToCentre(), best, 1e-6 * best) << "p " << p << " beta " << beta;
+    }
+  HumpShape flat;
+  flat.exponent = 0.25;
+  flat.edge_gain = 1.06;
+  EXPECT_NEAR(flat.EdgeToCentre(), 1.30, 0.005);
+}
+
 TEST(CountFit, OptionsAreChecked) {
   CountFitOptions o;
   std::string e;

@@ -105,6 +105,16 @@ TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
                               " --bearing N205EM --rpm 1200 --json --count-without-cage-hump");
   ASSERT_EQ(loose.code, 0) << loose.err;
   EXPECT_FALSE(nlohmann::json::parse(loose.out)["settings"]["count_needs_cage_hump"].get<bool>());
+  EXPECT_EQ(nlohmann::json::parse(base.out)["settings"]["min_count_hump_exponent"].get<double>(),
+            0.3);
+  EXPECT_EQ(
+      nlohmann::json::parse(base.out)["settings"]["flat_hump_max_edge_to_centre"].get<double>(),
+      2.0);
+  const auto flat = RunSpall("identify " + kSample +
+                             " --bearing N205EM --rpm 1200 --json --count-with-flat-hump");
+  ASSERT_EQ(flat.code, 0) << flat.err;
+  EXPECT_EQ(nlohmann::json::parse(flat.out)["settings"]["min_count_hump_exponent"].get<double>(),
+            0.0);
   EXPECT_FALSE(nlohmann::json::parse(base.out)["settings"]["combine_per_count"].get<bool>());
   const auto per_count =
       RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json --combine-per-count");

@@ -251,6 +251,45 @@ TEST(Refusals, NoCountWhereTheCageAverageAloneShowsNoHump) {
   EXPECT_NE(CountRefusal(fit, o).find("not load-modulated"), std::string::npos);
 }
 
+// IdentifyOptions::min_count_hump_exponent on a count fit made by hand: one roller at P 0.93
+// whose hump needed the flattest shape the fit allows (two adjacent rollers' merged humps, as on
+// the validation sets) is refused; with a load-shaped hump, an edge-peaked one (the hybrid
+// model's single rollers), or with the rule off, it is stated.
+TEST(Refusals, NoCountWhereTheHumpIsAsFlatAsItsShapeAllows) {
+  CountFit fit;
+  fit.sideband_lines = 12;
+  fit.probability = {0.01, 0.93, 0.06, 0.0};
+  fit.probability_cage = {0.05, 0.80, 0.15, 0.0};
+  fit.probability_sidebands = {0.1, 0.5, 0.3, 0.1};
+  fit.best.resize(4);
+  fit.best[1].shape.exponent = 0.25;
+  fit.best[2].shape.exponent = 1.5;
+  IdentifyOptions o;
+  const std::string why = CountRefusal(fit, o);
+  EXPECT_NE(why.find("hump of 1 defective roller, P = 0.93, is as flat as its shape allows "
+                     "(exponent 0.25 < 0.30, edges 1.00 times its centre)"),
+            std::string::npos)
+      << why;
+  fit.best[1].shape.edge_gain = 1.06;  // still flat-topped: edges 1.30 times the centre
+  EXPECT_NE(CountRefusal(fit, o).find("edges 1.30 times"), std::string::npos);
+  fit.best[1].shape.edge_gain = 7.0;  // edge-peaked
+  EXPECT_EQ(CountRefusal(fit, o), "");
+  fit.best[1].shape.edge_gain = 0.0;
+  fit.best[1].shape.exponent = 0.8;
+  EXPECT_EQ(CountRefusal(fit, o), "");
+  fit.best[1].shape.exponent = 0.25;
+  o.min_count_hump_exponent = 0.0;
+  EXPECT_EQ(CountRefusal(fit, o), "");
+  o.min_count_hump_exponent = -1.0;
+  std::string error;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("min_count_hump_exponent"), std::string::npos) << error;
+  o = IdentifyOptions();
+  o.flat_hump_max_edge_to_centre = 0.5;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("flat_hump_max_edge_to_centre"), std::string::npos) << error;
+}
+
 TEST(Refusals, TooFewCageRevolutionsForACount) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0}}));  // 8.3 revolutions
   IdentifyOptions o;
