@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "tests/dsp/diagnose_test_signals.h"
@@ -227,6 +230,20 @@ TEST(Refusals, ContactReleaseShiftsTheWidthAndNeedsTheLoad) {
       << no_load.BriefReport();
 }
 
+// A count fit made by hand for the statement rules (CountRefusal): the combined probabilities and
+// each feature's, per K = 0..3, with feature B's lines present.
+CountFit HandMadeCountFit(std::vector<double> combined,
+                          std::vector<double> cage,
+                          std::vector<double> sidebands) {
+  CountFit fit;
+  fit.sideband_lines = 12;
+  fit.probability = std::move(combined);
+  fit.probability_cage = std::move(cage);
+  fit.probability_sidebands = std::move(sidebands);
+  fit.best.resize(fit.probability.size());
+  return fit;
+}
+
 // The diagnosis itself needs 4 cage revolutions; a stricter requirement refuses the count.
 // The count's statement rules on a count fit made by hand (IdentifyOptions::
 // count_needs_cage_hump): the combined evidence names two rollers at P 0.95, carried by the
@@ -234,11 +251,8 @@ TEST(Refusals, ContactReleaseShiftsTheWidthAndNeedsTheLoad) {
 // 0.46 mm spalls, docs/IDENTIFY.md): refused, and stated when the rule is off or when the cage
 // average ranks a roller first.
 TEST(Refusals, NoCountWhereTheCageAverageAloneShowsNoHump) {
-  CountFit fit;
-  fit.sideband_lines = 12;
-  fit.probability = {0.02, 0.03, 0.95, 0.0};
-  fit.probability_cage = {0.45, 0.35, 0.20, 0.0};
-  fit.probability_sidebands = {0.0, 0.05, 0.92, 0.03};
+  CountFit fit =
+      HandMadeCountFit({0.02, 0.03, 0.95, 0.0}, {0.45, 0.35, 0.20, 0.0}, {0.0, 0.05, 0.92, 0.03});
   IdentifyOptions o;
   const std::string why = CountRefusal(fit, o);
   EXPECT_NE(why.find("shows no load-zone hump: P(0) = 0.45"), std::string::npos) << why;
@@ -256,12 +270,8 @@ TEST(Refusals, NoCountWhereTheCageAverageAloneShowsNoHump) {
 // the validation sets) is refused; with a load-shaped hump, an edge-peaked one (the hybrid
 // model's single rollers), or with the rule off, it is stated.
 TEST(Refusals, NoCountWhereTheHumpIsAsFlatAsItsShapeAllows) {
-  CountFit fit;
-  fit.sideband_lines = 12;
-  fit.probability = {0.01, 0.93, 0.06, 0.0};
-  fit.probability_cage = {0.05, 0.80, 0.15, 0.0};
-  fit.probability_sidebands = {0.1, 0.5, 0.3, 0.1};
-  fit.best.resize(4);
+  CountFit fit =
+      HandMadeCountFit({0.01, 0.93, 0.06, 0.0}, {0.05, 0.80, 0.15, 0.0}, {0.1, 0.5, 0.3, 0.1});
   fit.best[1].shape.exponent = 0.25;
   fit.best[2].shape.exponent = 1.5;
   IdentifyOptions o;
