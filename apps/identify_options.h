@@ -25,7 +25,7 @@ struct IdentifyStatementOptions {
   bool pattern_per_parity = false;
   bool width_needs_count = false;
   bool count_without_cage_hump = false;
-  bool count_with_flat_hump = false;
+  bool count_with_extreme_hump = false;
   bool combine_per_count = false;
 
   void Add(CLI::App& sub) {
@@ -65,10 +65,10 @@ struct IdentifyStatementOptions {
                  count_without_cage_hump,
                  "state a count also where the cage average by itself ranks no defective roller "
                  "first (by default the sideband pattern alone states no count: docs/IDENTIFY.md)");
-    sub.add_flag("--count-with-flat-hump",
-                 count_with_flat_hump,
-                 "state a count also where its load-zone hump is as flat as the fit allows (by "
-                 "default refused: adjacent defective rollers' humps merge so: docs/IDENTIFY.md)");
+    sub.add_flag("--count-with-extreme-hump",
+                 count_with_extreme_hump,
+                 "state a count also where its load-zone hump is as flat or as narrow as the fit "
+                 "allows (by default refused: merged or split humps, docs/IDENTIFY.md)");
   }
 
   // Throws InputError naming the option when a given value is out of range. The ranges are the
@@ -102,7 +102,10 @@ struct IdentifyStatementOptions {
     if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
     if (width_needs_count) o->width_over_uncertain_count = false;
     if (count_without_cage_hump) o->count_needs_cage_hump = false;
-    if (count_with_flat_hump) o->min_count_hump_exponent = 0.0;
+    if (count_with_extreme_hump) {
+      o->min_count_hump_exponent = 0.0;
+      o->max_count_hump_exponent = identify::kHumpMaxExponent;
+    }
     if (combine_per_count) o->count.combine_per_count = true;
   }
 };

@@ -82,7 +82,6 @@ struct HumpResidual {
   }
 };
 
-constexpr double kMinExponent = 0.25, kMaxExponent = 6.0;
 constexpr double kMinSmear = 0.01;
 constexpr double kMaxEdgeGain = 20.0;
 constexpr double kMinHalfAngle = 20.0 * kPi / 180.0, kMaxHalfAngle = 100.0 * kPi / 180.0;
@@ -187,8 +186,8 @@ HumpFit Refine(const CageAverage& avg, int z, const HumpFit& start, const CountF
   cost->SetNumResiduals(avg.bins());
   ceres::Problem problem;
   problem.AddResidualBlock(cost, nullptr, {shape, &theta0, &floor, amp.data()});
-  problem.SetParameterLowerBound(shape, 0, kMinExponent);
-  problem.SetParameterUpperBound(shape, 0, kMaxExponent);
+  problem.SetParameterLowerBound(shape, 0, kHumpMinExponent);
+  problem.SetParameterUpperBound(shape, 0, kHumpMaxExponent);
   problem.SetParameterLowerBound(shape, 1, std::max(kMinSmear, 0.3 * 2.0 * kPi / avg.bins()));
   problem.SetParameterUpperBound(shape, 1, std::max(kMinSmear * 1.01, o.max_smear_rad));
   if (f.shape.half_angle_fixed) {

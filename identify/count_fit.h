@@ -106,6 +106,9 @@ struct CountFitOptions {
   bool IsValid(std::string* error) const;
 };
 
+// The range of the strength law's exponent p that the fits search.
+constexpr double kHumpMinExponent = 0.25, kHumpMaxExponent = 6.0;
+
 struct HumpShape {
   double exponent = 1.0;        // p
   double edge_gain = 0.0;       // beta

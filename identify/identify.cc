@@ -236,18 +236,26 @@ std::string CountRefusal(const CountFit& cf, const IdentifyOptions& options) {
     return "count: uncertain (most probable " + std::to_string(k) +
            " with P = " + FormatNumber("%.2f", cf.probability[k]) + ", below the " +
            FormatNumber("%.2f", options.min_count_probability) + " a count needs)";
-  if (k < static_cast<int>(cf.best.size()) &&
-      cf.best[k].shape.exponent < options.min_count_hump_exponent &&
-      cf.best[k].shape.EdgeToCentre() < options.flat_hump_max_edge_to_centre)
-    return "count: not identifiable (the load-zone hump of " + std::to_string(k) +
-           " defective roller" + (k == 1 ? "" : "s") +
-           ", P = " + FormatNumber("%.2f", cf.probability[k]) +
-           ", is as flat as its shape allows (exponent " +
-           FormatNumber("%.2f", cf.best[k].shape.exponent) + " < " +
-           FormatNumber("%.2f", options.min_count_hump_exponent) + ", edges " +
-           FormatNumber("%.2f", cf.best[k].shape.EdgeToCentre()) +
-           " times its centre): wider than one roller's load zone makes it, as the merged humps "
-           "of rollers in adjacent slots are)";
+  if (k < static_cast<int>(cf.best.size())) {
+    const HumpShape& shape = cf.best[k].shape;
+    const std::string hump = "the load-zone hump of " + std::to_string(k) + " defective roller" +
+                             (k == 1 ? "" : "s") +
+                             ", P = " + FormatNumber("%.2f", cf.probability[k]) + ", is as ";
+    if (shape.exponent < options.min_count_hump_exponent &&
+        shape.EdgeToCentre() < options.flat_hump_max_edge_to_centre)
+      return "count: not identifiable (" + hump + "flat as its shape allows (exponent " +
+             FormatNumber("%.2f", shape.exponent) + " < " +
+             FormatNumber("%.2f", options.min_count_hump_exponent) + ", edges " +
+             FormatNumber("%.2f", shape.EdgeToCentre()) +
+             " times its centre): wider than one roller's load zone makes it, as the merged "
+             "humps of rollers in adjacent slots are)";
+    if (shape.exponent > options.max_count_hump_exponent)
+      return "count: not identifiable (" + hump + "narrow as its shape allows (exponent " +
+             FormatNumber("%.2f", shape.exponent) + " > " +
+             FormatNumber("%.2f", options.max_count_hump_exponent) +
+             "): narrower than one roller's load zone makes it, the configuration splits "
+             "strikes between humps rather than following rollers)";
+  }
   const bool disagree =
       cf.sideband_lines > 0 && !cf.probability_cage.empty() && !cf.probability_sidebands.empty() &&
       argmax(cf.probability_cage) != argmax(cf.probability_sidebands) &&
@@ -274,6 +282,9 @@ bool IdentifyOptions::IsValid(std::string* error) const {
     return fail("identify: min_count_hump_exponent must be >= 0");
   if (!(flat_hump_max_edge_to_centre >= 1 && std::isfinite(flat_hump_max_edge_to_centre)))
     return fail("identify: flat_hump_max_edge_to_centre must be >= 1");
+  if (!(max_count_hump_exponent > min_count_hump_exponent &&
+        std::isfinite(max_count_hump_exponent)))
+    return fail("identify: max_count_hump_exponent must be finite and > min_count_hump_exponent");
   if (min_cage_revolutions < 2) return fail("identify: min_cage_revolutions must be >= 2");
   if (sideband_harmonics < 0 || sideband_orders < 1)
     return fail("identify: sideband_harmonics must be >= 0 and sideband_orders >= 1");
@@ -665,6 +676,7 @@ std::string Identification::ToJson(int indent) const {
   settings["count_needs_cage_hump"] = options.count_needs_cage_hump;
   settings["min_count_hump_exponent"] = options.min_count_hump_exponent;
   settings["flat_hump_max_edge_to_centre"] = options.flat_hump_max_edge_to_centre;
+  settings["max_count_hump_exponent"] = options.max_count_hump_exponent;
   settings["combine_per_count"] = options.count.combine_per_count;
   settings["max_count"] =
       options.count.max_count >= 0 ? ordered_json(options.count.max_count) : ordered_json(nullptr);

@@ -59,21 +59,32 @@ struct IdentifyOptions {
   // P 0.62-0.95; docs/IDENTIFY.md, "Hybrid records of the paper's experiment"). false: the
   // combined probability alone decides.
   bool count_needs_cage_hump = true;
-  // A count is not stated when its load-zone hump (feature A's fit of the most probable count) is
-  // as flat as the shape allows: exponent p below min_count_hump_exponent (the fit's lower bound
-  // is 0.25) and no edge peaks (HumpShape::EdgeToCentre() below flat_hump_max_edge_to_centre).
-  // Such a flat-topped hump is wider than one roller's load zone makes it, and that is how
-  // adjacent defective rollers show: their humps, one cage slot (27.7 deg on the N205EM) apart,
-  // merge into one that a smaller count with its flattest shape fits as well. Every count it
-  // refuses on the six lumped validation sets was wrong, each on rollers in adjacent slots (2
-  // for 3 and 1 for 2; their edge-to-centre ratios 1.0-1.3). 0.3 was chosen on the tuning-side
-  // sets (0 right and 7 wrong counts refused; 0.26: 0 and 3; 0.35: 2 and 11) and checked on the
-  // report sets (0 right, 7 wrong). The edge condition was added for the hybrid model, whose
-  // one-roller humps reach the lowest exponent with edges 4-11 times their centre (strikes
-  // hardest where the roller enters and leaves the load zone); without it 6 of its right counts
-  // are refused (docs/IDENTIFY.md, "Count and positions"). min_count_hump_exponent 0: no rule.
+  // A count is not stated when its load-zone hump (feature A's fit of the most probable count) has
+  // a shape at the edge of what the fit allows, which no single roller's strikes give:
+  // - as flat as it can be: exponent p below min_count_hump_exponent (the fit's lower bound is
+  //   0.25) and no edge peaks (HumpShape::EdgeToCentre() below flat_hump_max_edge_to_centre).
+  //   Such a flat-topped hump is wider than one roller's load zone makes it, and that is how
+  //   adjacent defective rollers show: their humps, one cage slot (27.7 deg on the N205EM)
+  //   apart, merge into one that a smaller count with its flattest shape fits as well. Every
+  //   count it refuses on the six lumped validation sets was wrong, each on rollers in adjacent
+  //   slots (2 for 3 and 1 for 2; their edge-to-centre ratios 1.0-1.3). 0.3 was chosen on the
+  //   tuning-side sets (0 right and 7 wrong counts refused; 0.26: 0 and 3; 0.35: 2 and 11) and
+  //   checked on the report sets (0 right, 7 wrong). The edge condition was added for the hybrid
+  //   model, whose one-roller humps reach the lowest exponent with edges 4-11 times their
+  //   centre (strikes hardest where the roller enters and leaves the load zone); without it 6 of
+  //   its right counts are refused.
+  // - as narrow as it can be: p above max_count_hump_exponent (the upper bound is 6), humps
+  //   that cover the middle third of the load zone while a spall strikes all across it: the
+  //   configuration splits strikes between humps (one roller's entry and exit lobes read as two
+  //   rollers on the hybrid model) rather than following rollers. 5.0 is the lower rule's
+  //   margin mirrored (a factor 1.2 inside the bound); no count on the tuning side reaches it;
+  //   on the report sets it refuses 3 wrong counts, on the hybrid records of the paper's
+  //   experiments 4, and no right one.
+  // docs/IDENTIFY.md, "Count and positions". min_count_hump_exponent 0 and
+  // max_count_hump_exponent 6: no such rules.
   double min_count_hump_exponent = 0.3;
   double flat_hump_max_edge_to_centre = 2.0;
+  double max_count_hump_exponent = 5.0;
   WidthFitOptions width;
   // Width band: Hann window centred on the diagnosis band, +/- max(its width, this) (Hz).
   double width_band_min_half_width_hz = 2000.0;
@@ -244,8 +255,8 @@ double DelayOfWidth(double width_m, double d, const Identification& id, const Id
 
 // Why a count fit's most probable count is not stated ("count: ..."), or empty when it is: no
 // hump at all, none from the cage average by itself (count_needs_cage_hump), a probability below
-// min_count_probability, a hump as flat as its shape allows (min_count_hump_exponent), or the two
-// features confidently naming different counts.
+// min_count_probability, a hump as flat or as narrow as its shape allows (min_count_hump_exponent,
+// max_count_hump_exponent), or the two features confidently naming different counts.
 std::string CountRefusal(const CountFit& fit, const IdentifyOptions& options);
 
 }  // namespace spallkit::identify

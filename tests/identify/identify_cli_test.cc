@@ -110,11 +110,14 @@ TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
   EXPECT_EQ(
       nlohmann::json::parse(base.out)["settings"]["flat_hump_max_edge_to_centre"].get<double>(),
       2.0);
-  const auto flat = RunSpall("identify " + kSample +
-                             " --bearing N205EM --rpm 1200 --json --count-with-flat-hump");
-  ASSERT_EQ(flat.code, 0) << flat.err;
-  EXPECT_EQ(nlohmann::json::parse(flat.out)["settings"]["min_count_hump_exponent"].get<double>(),
-            0.0);
+  EXPECT_EQ(nlohmann::json::parse(base.out)["settings"]["max_count_hump_exponent"].get<double>(),
+            5.0);
+  const auto extreme = RunSpall("identify " + kSample +
+                                " --bearing N205EM --rpm 1200 --json --count-with-extreme-hump");
+  ASSERT_EQ(extreme.code, 0) << extreme.err;
+  const nlohmann::json je = nlohmann::json::parse(extreme.out);
+  EXPECT_EQ(je["settings"]["min_count_hump_exponent"].get<double>(), 0.0);
+  EXPECT_EQ(je["settings"]["max_count_hump_exponent"].get<double>(), 6.0);
   EXPECT_FALSE(nlohmann::json::parse(base.out)["settings"]["combine_per_count"].get<bool>());
   const auto per_count =
       RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json --combine-per-count");

@@ -265,11 +265,12 @@ TEST(Refusals, NoCountWhereTheCageAverageAloneShowsNoHump) {
   EXPECT_NE(CountRefusal(fit, o).find("not load-modulated"), std::string::npos);
 }
 
-// IdentifyOptions::min_count_hump_exponent on a count fit made by hand: one roller at P 0.93
+// IdentifyOptions::min/max_count_hump_exponent on a count fit made by hand: one roller at P 0.93
 // whose hump needed the flattest shape the fit allows (two adjacent rollers' merged humps, as on
-// the validation sets) is refused; with a load-shaped hump, an edge-peaked one (the hybrid
-// model's single rollers), or with the rule off, it is stated.
-TEST(Refusals, NoCountWhereTheHumpIsAsFlatAsItsShapeAllows) {
+// the validation sets) is refused, and so is one whose hump is as narrow as the fit allows (one
+// roller's strikes split between humps); with a load-shaped hump, an edge-peaked flat one (the
+// hybrid model's single rollers), or with the rules off, it is stated.
+TEST(Refusals, NoCountWhereTheHumpIsAsFlatOrAsNarrowAsItsShapeAllows) {
   CountFit fit =
       HandMadeCountFit({0.01, 0.93, 0.06, 0.0}, {0.05, 0.80, 0.15, 0.0}, {0.1, 0.5, 0.3, 0.1});
   fit.best[1].shape.exponent = 0.25;
@@ -287,6 +288,13 @@ TEST(Refusals, NoCountWhereTheHumpIsAsFlatAsItsShapeAllows) {
   fit.best[1].shape.edge_gain = 0.0;
   fit.best[1].shape.exponent = 0.8;
   EXPECT_EQ(CountRefusal(fit, o), "");
+  fit.best[1].shape.exponent = 5.8;
+  const std::string narrow = CountRefusal(fit, o);
+  EXPECT_NE(narrow.find("is as narrow as its shape allows (exponent 5.80 > 5.00)"),
+            std::string::npos)
+      << narrow;
+  o.max_count_hump_exponent = kHumpMaxExponent;
+  EXPECT_EQ(CountRefusal(fit, o), "");
   fit.best[1].shape.exponent = 0.25;
   o.min_count_hump_exponent = 0.0;
   EXPECT_EQ(CountRefusal(fit, o), "");
@@ -298,6 +306,10 @@ TEST(Refusals, NoCountWhereTheHumpIsAsFlatAsItsShapeAllows) {
   o.flat_hump_max_edge_to_centre = 0.5;
   EXPECT_FALSE(o.IsValid(&error));
   EXPECT_NE(error.find("flat_hump_max_edge_to_centre"), std::string::npos) << error;
+  o = IdentifyOptions();
+  o.max_count_hump_exponent = 0.2;  // below the flat rule's bound
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("max_count_hump_exponent"), std::string::npos) << error;
 }
 
 TEST(Refusals, TooFewCageRevolutionsForACount) {
