@@ -81,7 +81,9 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
 }
 
 // The sideband feature's model with one pattern per parity (not the default) is chosen on the
-// command line and said in the settings; the sample record is one roller either way.
+// command line and said in the settings; the sample record is one roller either way. Each
+// statement rule's switch (width rule, cage hump, hump shape, per-count combination) is said in
+// the settings too.
 TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
   const auto r = RunSpall("identify " + kSample +
                           " --bearing N205EM --rpm 1200 --json --sideband-pattern-per-parity");
