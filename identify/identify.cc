@@ -20,6 +20,12 @@
 namespace spallkit::identify {
 namespace {
 
+// The roller rolls sqrt(d delta) past the leading edge before it is released and lands
+// sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
+double ReleaseAngle(double d, const Identification& id, const IdentifyOptions& o) {
+  return o.width_contact_release ? 2.0 * std::sqrt(id.contact_approach_m / d) : 0.0;
+}
+
 // The samples (rate fs, from the record's first one) whose cage phase lies in the load zone of
 // the fitted humps: the model above 0.3 of its range. With exclusive_ratio > 0 and several humps,
 // only where one roller's hump is above 0.3 of its own peak and the others' together are below
@@ -198,14 +204,6 @@ std::string WidthForCount(int k,
 
 }  // namespace
 
-// The roller rolls sqrt(d delta) past the leading edge before it is released and lands
-// sqrt(d delta) before the trailing one (IdentifyOptions::width_contact_release).
-namespace {
-double ReleaseAngle(double d, const Identification& id, const IdentifyOptions& o) {
-  return o.width_contact_release ? 2.0 * std::sqrt(id.contact_approach_m / d) : 0.0;
-}
-}  // namespace
-
 double WidthOfDelay(double delay_s, double d, const Identification& id, const IdentifyOptions& o) {
   const double t =
       std::max(0.0, (delay_s - o.width_calibration_offset_s) / o.width_calibration_scale);
@@ -238,23 +236,25 @@ std::string CountRefusal(const CountFit& cf, const IdentifyOptions& options) {
            FormatNumber("%.2f", options.min_count_probability) + " a count needs)";
   if (k < static_cast<int>(cf.best.size())) {
     const HumpShape& shape = cf.best[k].shape;
-    const std::string hump = "the load-zone hump of " + std::to_string(k) + " defective roller" +
-                             (k == 1 ? "" : "s") +
-                             ", P = " + FormatNumber("%.2f", cf.probability[k]) + ", is as ";
-    if (shape.exponent < options.min_count_hump_exponent &&
-        shape.EdgeToCentre() < options.flat_hump_max_edge_to_centre)
-      return "count: not identifiable (" + hump + "flat as its shape allows (exponent " +
-             FormatNumber("%.2f", shape.exponent) + " < " +
-             FormatNumber("%.2f", options.min_count_hump_exponent) + ", edges " +
-             FormatNumber("%.2f", shape.EdgeToCentre()) +
-             " times its centre): wider than one roller's load zone makes it, as the merged "
-             "humps of rollers in adjacent slots are)";
+    auto hump = [&](const std::string& as) {
+      return "count: not identifiable (the load-zone hump of " + std::to_string(k) +
+             " defective roller" + (k == 1 ? "" : "s") +
+             ", P = " + FormatNumber("%.2f", cf.probability[k]) + ", is as " + as;
+    };
+    if (shape.exponent < options.min_count_hump_exponent) {
+      const double edges = shape.EdgeToCentre();
+      if (edges < options.flat_hump_max_edge_to_centre)
+        return hump("flat as its shape allows (exponent " + FormatNumber("%.2f", shape.exponent) +
+                    " < " + FormatNumber("%.2f", options.min_count_hump_exponent) + ", edges " +
+                    FormatNumber("%.2f", edges) +
+                    " times its centre): wider than one roller's load zone makes it, as the "
+                    "merged humps of rollers in adjacent slots are)");
+    }
     if (shape.exponent > options.max_count_hump_exponent)
-      return "count: not identifiable (" + hump + "narrow as its shape allows (exponent " +
-             FormatNumber("%.2f", shape.exponent) + " > " +
-             FormatNumber("%.2f", options.max_count_hump_exponent) +
-             "): narrower than one roller's load zone makes it, the configuration splits "
-             "strikes between humps rather than following rollers)";
+      return hump("narrow as its shape allows (exponent " + FormatNumber("%.2f", shape.exponent) +
+                  " > " + FormatNumber("%.2f", options.max_count_hump_exponent) +
+                  "): narrower than one roller's load zone makes it, the configuration splits "
+                  "strikes between humps rather than following rollers)");
   }
   const bool disagree =
       cf.sideband_lines > 0 && !cf.probability_cage.empty() && !cf.probability_sidebands.empty() &&
