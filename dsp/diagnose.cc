@@ -70,6 +70,10 @@ bool DiagnoseOptions::IsValid(std::string* error) const {
     return fail("false-alarm probability must be in (0, 1)");
   if (kurtogram_max_level < 0) return fail("kurtogram level must be >= 0");
   if (first_bands < 0) return fail("first bands must be >= 0 (0 = all candidates at once)");
+  if (!(outer_race_min_band_orders >= 0.0 && outer_race_min_band_orders <= 1000.0))
+    return fail("outer-race minimum band order must be in [0, 1000] (0 = any band)");
+  if (!(min_band_low_hz >= 0.0 && std::isfinite(min_band_low_hz)))
+    return fail("minimum band low edge must be >= 0 Hz");
   if (threads < 0 || threads > kMaxThreads)
     return fail("threads must be in 0.." + std::to_string(kMaxThreads) + " (0 = automatic)");
   if (!(min_periods >= 0.0 && min_periods <= 1000.0))
@@ -298,22 +302,25 @@ AnalysisNeeds SetUpDiagnosis(const Record& record,
 
 // Candidate bands: kurtogram nodes at least band_need wide (every line of one race or roller
 // family), at most kMaxWidthFactor alpha_need (wider nodes only dilute a resonance with noise and
-// cost the most to demodulate), starting above alpha_need / 2.
+// cost the most to demodulate), starting above alpha_need / 2 and at or above min_low_hz.
 std::vector<KurtogramNode> CandidateBands(const std::vector<KurtogramNode>& nodes,
                                           double band_need,
                                           double alpha_need,
+                                          double min_low_hz,
                                           double fs) {
   std::vector<KurtogramNode> candidates;
   for (const auto& node : nodes) {
     const Band b = node.band();
     if (b.width_hz() >= band_need && b.width_hz() <= kMaxWidthFactor * alpha_need &&
-        b.low_hz >= 0.5 * alpha_need)
+        b.low_hz >= 0.5 * alpha_need && b.low_hz >= min_low_hz)
       candidates.push_back(node);
   }
   if (candidates.empty())
     throw InputError(
-        "diagnose: no demodulation band of width >= " + FormatNumber("%.0f", band_need) +
-        " Hz fits below fs/2 = " + FormatNumber("%.0f", 0.5 * fs) + " Hz");
+        "diagnose: no demodulation band of width >= " + FormatNumber("%.0f", band_need) + " Hz" +
+        (min_low_hz > 0 ? " starting at or above " + FormatNumber("%.0f", min_low_hz) + " Hz"
+                        : std::string()) +
+        " fits below fs/2 = " + FormatNumber("%.0f", 0.5 * fs) + " Hz");
   return candidates;
 }
 
@@ -698,10 +705,34 @@ void ExplainAndConclude(const DetectionContext& ctx,
   d->verdict = FirstDetectedVerdict(d->faults);
 }
 
+// The outer race's comb on the pre-whitened record, over the candidate bands that start at or
+// above min_low_hz (a whole second analysis); nullopt when no candidate band starts that high.
+std::optional<double> OuterRacePValuePrewhitened(const Record& record,
+                                                 const BearingGeometry& bearing,
+                                                 double shaft_hz,
+                                                 const DiagnoseOptions& options,
+                                                 double min_low_hz) {
+  DiagnoseOptions again = options;
+  again.prewhiten = true;
+  again.kurtogram_map = false;
+  again.min_band_low_hz = std::max(options.min_band_low_hz, min_low_hz);
+  Diagnosis d;
+  try {
+    d = Diagnose(record, bearing, shaft_hz, again);
+  } catch (const InputError&) {
+    if (again.min_band_low_hz > options.min_band_low_hz) return std::nullopt;  // no such band
+    throw;
+  }
+  for (const auto& det : d.faults)
+    if (det.component == FaultComponent::kOuterRace) return det.p_value;
+  return 1.0;
+}
+
 // DiagnoseOptions::confirm_outer_race: the outer-race family is claimed only when its comb is
-// also significant on the cepstrum-pre-whitened record (varying compliance is deterministic).
-// First on the chosen band (the record's spectrum whitened in place and one band SES), and only
-// when it fails there on a whole second analysis of the pre-whitened record (any candidate band).
+// also significant on the cepstrum-pre-whitened record (varying compliance is deterministic), in
+// a band starting at or above outer_race_min_band_orders x BPFO (above its lines). First on the
+// chosen band when it starts that high (the record's spectrum whitened in place and one band
+// SES), and only when it fails there on a whole second analysis of the pre-whitened record.
 void ConfirmOuterRaceOnPrewhitened(const Record& record,
                                    const BearingGeometry& bearing,
                                    double shaft_hz,
@@ -713,34 +744,53 @@ void ConfirmOuterRaceOnPrewhitened(const Record& record,
                                    Diagnosis* d) {
   if (d->verdict != Verdict::kOuterRace || !options.confirm_outer_race || options.prewhiten) return;
   const FaultFamily& outer = d->families[static_cast<int>(FaultComponent::kOuterRace)];
-  // The analyser is of the raw record here (options.prewhiten is off) and is not needed after
-  // this step, so it is whitened in place: no second transform of the record.
-  analyzer.Whiten();
-  EnvelopeAnalyzer& whitened = analyzer;
-  const double df = whitened.resolution_hz();
-  const double max_alpha =
-      std::min(d->band.width_hz(), alpha_need + (options.floor_window_bins / 2 + 2) * df);
-  NormalizedSpectrum in_band = NormalizeBandSes(
-      whitened.SesPowerFast(d->band, max_alpha, nullptr), df, d->band.width_hz(), dopt);
-  in_band.envelope_mean = SquaredEnvelopeMean(whitened,
-                                              static_cast<int>(std::ceil(d->band.low_hz / df)),
-                                              static_cast<int>(std::ceil(d->band.high_hz / df)));
-  double p = DetectFamily(in_band, outer, ctx, dopt).p_value;
+  const double min_low_hz = options.outer_race_min_band_orders * outer.fundamental_hz;
+  double p = 1.0;
+  if (d->band.low_hz >= min_low_hz) {
+    // The analyser is of the raw record here (options.prewhiten is off) and is not needed after
+    // this step, so it is whitened in place: no second transform of the record.
+    analyzer.Whiten();
+    EnvelopeAnalyzer& whitened = analyzer;
+    const double df = whitened.resolution_hz();
+    const double max_alpha =
+        std::min(d->band.width_hz(), alpha_need + (options.floor_window_bins / 2 + 2) * df);
+    NormalizedSpectrum in_band = NormalizeBandSes(
+        whitened.SesPowerFast(d->band, max_alpha, nullptr), df, d->band.width_hz(), dopt);
+    in_band.envelope_mean = SquaredEnvelopeMean(whitened,
+                                                static_cast<int>(std::ceil(d->band.low_hz / df)),
+                                                static_cast<int>(std::ceil(d->band.high_hz / df)));
+    p = DetectFamily(in_band, outer, ctx, dopt).p_value;
+  }
+  bool above_compliance = options.outer_race_min_band_orders > 0;
   if (p > options.false_alarm_probability) {
-    DiagnoseOptions again = options;
-    again.prewhiten = true;
-    again.kurtogram_map = false;
-    for (const auto& det : Diagnose(record, bearing, shaft_hz, again).faults)
-      if (det.component == FaultComponent::kOuterRace) p = std::min(p, det.p_value);
+    std::optional<double> high =
+        OuterRacePValuePrewhitened(record, bearing, shaft_hz, options, min_low_hz);
+    if (!high) {
+      // No band above the compliance's orders below fs/2: any band confirms, with a warning.
+      above_compliance = false;
+      high = OuterRacePValuePrewhitened(record, bearing, shaft_hz, options, 0.0);
+      d->warnings.push_back(
+          "outer race: no candidate band starts at or above " +
+          FormatNumber("%g", options.outer_race_min_band_orders) + " x BPFO (" +
+          FormatNumber("%.0f", min_low_hz) +
+          " Hz) below fs/2, so the record cannot tell a spall's impacts from the varying "
+          "compliance of a healthy bearing");
+    }
+    p = std::min(p, *high);
   }
   if (p <= options.false_alarm_probability) return;
   for (auto& det : d->faults) {
     if (det.component != FaultComponent::kOuterRace || !det.detected) continue;
     det.detected = false;
-    det.reason = "not claimed: the comb does not survive cepstrum pre-whitening (p = " +
-                 FormatNumber("%.2g", p) +
-                 "): discrete lines at n Z f_c, the varying compliance of a healthy bearing (" +
-                 det.reason + ")";
+    det.reason =
+        "not claimed: the comb does not survive cepstrum pre-whitening" +
+        (above_compliance ? " in a band starting at or above " +
+                                FormatNumber("%g", options.outer_race_min_band_orders) + " x BPFO"
+                          : std::string()) +
+        " (p = " + FormatNumber("%.2g", p) +
+        "): discrete lines at low orders of Z f_c, the varying compliance of a healthy "
+        "bearing (" +
+        det.reason + ")";
   }
   d->verdict = FirstDetectedVerdict(d->faults);
 }
@@ -773,7 +823,7 @@ Diagnosis Diagnose(const Record& record,
   d.measured_shaft_hz = MeasureShaftSpeed(signal, analyzer, shaft_hz, options);
 
   const std::vector<KurtogramNode> candidates =
-      CandidateBands(tree.nodes, band_need, needs.alpha_need, fs);
+      CandidateBands(tree.nodes, band_need, needs.alpha_need, options.min_band_low_hz, fs);
   // Bonferroni over every candidate band, searched or not: the early stop of the search only
   // ever searches fewer, so the false-alarm design is the same as searching them all.
   d.candidate_bands = static_cast<int>(candidates.size());
@@ -924,6 +974,8 @@ std::string Diagnosis::ToJson(int indent) const {
                    {"line_p_value", options.line_p_value},
                    {"min_modulation", options.min_modulation},
                    {"prewhiten", options.prewhiten},
+                   {"outer_race_min_band_orders", options.outer_race_min_band_orders},
+                   {"min_band_low_hz", options.min_band_low_hz},
                    {"multiplicity", multiplicity},
                    {"ses_resolution_hz", ses.resolution_hz}};
   return j.dump(indent);

@@ -81,6 +81,19 @@ struct DiagnoseOptions {
   // pre-whitening flattens, whereas a spall's impacts (with their slip jitter) survive it. Costs
   // a second analysis on records called outer_race. Off when `prewhiten` is already set.
   bool confirm_outer_race = true;
+  // ...and the band where its comb survives pre-whitening must start at or above this many times
+  // the outer race's fundamental (kinematic BPFO). Varying compliance is a smooth load change per
+  // roller passage: its discrete raw lines sit at low orders of Z f_c (up to order 13 in the
+  // simulated healthy N205EM), and a narrow band among them turns their beats into a BPFO comb
+  // that pre-whitening keeps. A spall's impacts ring the structure far above those orders (the
+  // measured outer-race records confirm up to order 40). When no candidate band starts that high
+  // below fs/2, any band confirms and the Diagnosis warns that the record cannot tell the two
+  // apart. 0: any band confirms.
+  double outer_race_min_band_orders = 20.0;
+  // Candidate bands start at or above this frequency (Hz) besides the automatic lower limit
+  // (half the highest line searched); 0: the automatic limit only. Keeps a known low-frequency
+  // source (gear mesh, a structural resonance) out of the band search.
+  double min_band_low_hz = 0.0;
   // Threads (OpenMP) for the candidate bands and the kurtogram's two chains; 0: automatic,
   // min(number of processors, 4). Each band is computed by one thread with its own buffers and
   // the bands are compared in the same fixed order as with one thread, so the Diagnosis is
