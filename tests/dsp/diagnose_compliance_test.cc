@@ -42,16 +42,38 @@ Record PeriodicAtBpfo(unsigned seed) {
   return r;
 }
 
+// Impacts at BPFO ringing one resonance, jittered by the rollers' slip: an outer-race spall.
+Record JitteredImpactsAtBpfo(double fs_hz, double resonance_hz) {
+  const auto kin = ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz);
+  spallkit::testing::FaultSignalSpec s;
+  s.fs_hz = fs_hz;
+  s.duration_s = kSeconds;
+  s.rate_hz = kin.bpfo_hz;
+  s.amplitude = 2.0;
+  s.resonance_hz = resonance_hz;
+  s.jitter = 0.005;
+  s.noise_rms = 0.4;
+  Record r;
+  r.sample_rate_hz = fs_hz;
+  r.samples = spallkit::testing::MakeFaultSignal(s);
+  return r;
+}
+
+Diagnosis DiagnoseOneThread(const Record& r, DiagnoseOptions o = {}) {
+  o.threads = 1;
+  return Diagnose(r, CatalogBearing("N205EM"), kShaftHz, o);
+}
+
 TEST(DiagnoseCompliance, DeterministicBpfoResponseIsNotAnOuterRaceFault) {
   for (unsigned seed = 1; seed <= 2; ++seed) {
     const Record r = PeriodicAtBpfo(seed);
     DiagnoseOptions o;
-    o.threads = 1;
     o.confirm_outer_race = false;
-    const Diagnosis raw = Diagnose(r, CatalogBearing("N205EM"), kShaftHz, o);
+    const Diagnosis raw = DiagnoseOneThread(r, o);
     ASSERT_EQ(raw.verdict, Verdict::kOuterRace) << "the test signal must feed the BPFO comb";
     o.confirm_outer_race = true;
-    const Diagnosis d = Diagnose(r, CatalogBearing("N205EM"), kShaftHz, o);
+    o.outer_race_min_band_orders = 0.0;  // the pre-whitening alone flattens these lines
+    const Diagnosis d = DiagnoseOneThread(r, o);
     EXPECT_EQ(d.verdict, Verdict::kHealthy) << d.BriefReport();
     bool said = false;
     for (const auto& f : d.faults)
@@ -62,21 +84,7 @@ TEST(DiagnoseCompliance, DeterministicBpfoResponseIsNotAnOuterRaceFault) {
 }
 
 TEST(DiagnoseCompliance, JitteredImpactsAtBpfoStayAnOuterRaceFault) {
-  const auto kin = ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz);
-  spallkit::testing::FaultSignalSpec s;
-  s.fs_hz = kFs;
-  s.duration_s = kSeconds;
-  s.rate_hz = kin.bpfo_hz;
-  s.amplitude = 2.0;
-  s.resonance_hz = 2500.0;
-  s.jitter = 0.005;
-  s.noise_rms = 0.4;
-  Record r;
-  r.sample_rate_hz = kFs;
-  r.samples = spallkit::testing::MakeFaultSignal(s);
-  DiagnoseOptions o;
-  o.threads = 1;
-  const Diagnosis d = Diagnose(r, CatalogBearing("N205EM"), kShaftHz, o);
+  const Diagnosis d = DiagnoseOneThread(JitteredImpactsAtBpfo(kFs, 2500.0));
   EXPECT_EQ(d.verdict, Verdict::kOuterRace) << d.BriefReport();
 }
 
@@ -119,14 +127,12 @@ Record SmoothPassagesThroughALowResonance() {
 TEST(DiagnoseCompliance, LowOrderBpfoLinesAreNotAnOuterRaceFaultEvenWhenTheySurviveWhitening) {
   const Record r = SmoothPassagesThroughALowResonance();
   DiagnoseOptions o;
-  o.threads = 1;
   o.outer_race_min_band_orders = 0.0;  // pre-whitening alone
-  const Diagnosis any_band = Diagnose(r, CatalogBearing("N205EM"), kShaftHz, o);
+  const Diagnosis any_band = DiagnoseOneThread(r, o);
   ASSERT_EQ(any_band.verdict, Verdict::kOuterRace)
       << "the test signal must fool the pre-whitening alone\n"
       << any_band.BriefReport();
-  o.outer_race_min_band_orders = DiagnoseOptions{}.outer_race_min_band_orders;
-  const Diagnosis d = Diagnose(r, CatalogBearing("N205EM"), kShaftHz, o);
+  const Diagnosis d = DiagnoseOneThread(r);
   EXPECT_EQ(d.verdict, Verdict::kHealthy) << d.BriefReport();
   bool said = false;
   for (const auto& f : d.faults)
@@ -139,21 +145,7 @@ TEST(DiagnoseCompliance,
      ImpactsRingingOnlyALowResonanceAreConfirmedWhereTheRecordAllowsNoHigherBand) {
   // fs 4 kHz: no candidate band starts at 20 x BPFO (2.16 kHz) below fs/2, so any band confirms
   // the impacts and the Diagnosis says the record cannot tell them from varying compliance.
-  const auto kin = ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz);
-  spallkit::testing::FaultSignalSpec s;
-  s.fs_hz = 4000.0;
-  s.duration_s = kSeconds;
-  s.rate_hz = kin.bpfo_hz;
-  s.amplitude = 2.0;
-  s.resonance_hz = 1500.0;
-  s.jitter = 0.005;
-  s.noise_rms = 0.4;
-  Record r;
-  r.sample_rate_hz = s.fs_hz;
-  r.samples = spallkit::testing::MakeFaultSignal(s);
-  DiagnoseOptions o;
-  o.threads = 1;
-  const Diagnosis d = Diagnose(r, CatalogBearing("N205EM"), kShaftHz, o);
+  const Diagnosis d = DiagnoseOneThread(JitteredImpactsAtBpfo(4000.0, 1500.0));
   EXPECT_EQ(d.verdict, Verdict::kOuterRace) << d.BriefReport();
   bool warned = false;
   for (const auto& w : d.warnings) warned |= w.find("cannot tell") != std::string::npos;
@@ -161,23 +153,13 @@ TEST(DiagnoseCompliance,
 }
 
 TEST(DiagnoseCompliance, CandidateBandsStartAtTheRequestedFrequency) {
-  const auto kin = ComputeFrequencies(CatalogBearing("N205EM"), kShaftHz);
-  spallkit::testing::FaultSignalSpec s;
-  s.fs_hz = kFs;
-  s.duration_s = kSeconds;
-  s.rate_hz = kin.bpfo_hz;
-  s.amplitude = 2.0;
-  s.resonance_hz = 2500.0;
-  Record r;
-  r.sample_rate_hz = kFs;
-  r.samples = spallkit::testing::MakeFaultSignal(s);
+  const Record r = JitteredImpactsAtBpfo(kFs, 2500.0);
   DiagnoseOptions o;
-  o.threads = 1;
   o.min_band_low_hz = 4000.0;
-  const Diagnosis d = Diagnose(r, CatalogBearing("N205EM"), kShaftHz, o);
+  const Diagnosis d = DiagnoseOneThread(r, o);
   EXPECT_GE(d.band.low_hz, 4000.0) << d.BriefReport();
   o.min_band_low_hz = 0.49 * kFs;  // no band of the needed width fits above
-  EXPECT_THROW(Diagnose(r, CatalogBearing("N205EM"), kShaftHz, o), InputError);
+  EXPECT_THROW(DiagnoseOneThread(r, o), InputError);
   std::string error;
   o.min_band_low_hz = -1.0;
   EXPECT_FALSE(o.IsValid(&error));
