@@ -24,6 +24,7 @@ struct Opts {
   double false_alarm = 1e-3;
   int first_bands = 16;
   int threads = 0;
+  double min_band_hz = 0.0;
 };
 
 int Run(const Opts& o) {
@@ -47,6 +48,9 @@ int Run(const Opts& o) {
   if (o.harmonics < 1 || o.harmonics > Limits::kMaxHarmonics)
     throw InputError("--harmonics must be in 1.." + std::to_string(Limits::kMaxHarmonics) +
                      " (got " + std::to_string(o.harmonics) + ")");
+  if (!(o.min_band_hz >= 0 && std::isfinite(o.min_band_hz)))
+    throw InputError("--min-band-hz must be >= 0 (got " + spallkit::apps::Number(o.min_band_hz) +
+                     ")");
   const BearingGeometry g = o.input.bearing.Geometry();
   const Record record = o.input.Read();
 
@@ -57,6 +61,7 @@ int Run(const Opts& o) {
   opt.false_alarm_probability = o.false_alarm;
   opt.first_bands = o.first_bands;
   opt.threads = o.threads;
+  opt.min_band_low_hz = o.min_band_hz;
   opt.kurtogram_map = !o.plot_dir.empty();  // the deeper map only for the plot
   std::string error;
   if (!opt.IsValid(&error)) throw InputError(error);
@@ -88,6 +93,11 @@ spallkit::apps::Register reg(
                      o->first_bands,
                      "candidate bands searched first (most impulsive); the others only when "
                      "these show no fault (0: all at once; the false-alarm design is the same)")
+          ->capture_default_str();
+      sub.add_option("--min-band-hz",
+                     o->min_band_hz,
+                     "demodulation bands start at or above this frequency, Hz (keeps a known "
+                     "low-frequency source out of the band search; 0: automatic)")
           ->capture_default_str();
       sub.add_option("--threads",
                      o->threads,

@@ -119,6 +119,21 @@ TEST(DiagnoseCli, FromSecondsLeavesOutTheStart) {
   EXPECT_EQ(b["verdict"], "outer_race");
 }
 
+// --min-band-hz keeps the band search above a frequency; a limit that leaves no band is refused.
+TEST(DiagnoseCli, MinBandHzKeepsTheBandSearchAboveIt) {
+  const std::string path = WriteSynthetic("spall_cli_outer_min_band.csv", 2.0, true);
+  const Result r =
+      RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --json --min-band-hz 4000");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_GE(j["band"]["low_hz"].get<double>(), 4000.0);
+  EXPECT_EQ(j["settings"]["min_band_low_hz"].get<double>(), 4000.0);
+  const Result none =
+      RunSpall("diagnose " + path + " --bearing 6205 --rpm 1797 --min-band-hz 5900");
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(none.err.find("starting at or above 5900 Hz"), std::string::npos) << none.err;
+}
+
 void ExpectError(const std::string& args, const std::string& needle) {
   const Result r = RunSpall(args);
   EXPECT_EQ(r.code, 2) << args;
@@ -144,6 +159,8 @@ TEST(DiagnoseCli, BadInputIsOneLineAndExitCode2) {
   ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --from-s -1",
               "--from-s must be >= 0");
   ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --from-s 2", "leaves no samples");
+  ExpectError("diagnose " + path + " --bearing 6205 --rpm 1797 --min-band-hz -1",
+              "--min-band-hz must be >= 0");
 }
 
 TEST(DiagnoseCli, RecordsThatCannotBeAnalysedAreRefusedOrFlagged) {
