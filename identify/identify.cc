@@ -268,6 +268,23 @@ std::string CountRefusal(const CountFit& cf, const IdentifyOptions& options) {
   return "";
 }
 
+CountBound LowerCountBound(const CountFit& fit, const IdentifyOptions& options) {
+  IdentifyOptions any_probability = options;
+  any_probability.min_count_probability = std::numeric_limits<double>::min();
+  CountBound bound;
+  if (!CountRefusal(fit, any_probability).empty()) return bound;
+  double tail = 0.0;
+  for (int k = static_cast<int>(fit.probability.size()) - 1; k >= 1; --k) {
+    tail += fit.probability[k];
+    if (tail >= options.min_count_bound_probability) {
+      bound.count = k;
+      bound.probability = tail;
+      break;
+    }
+  }
+  return bound;
+}
+
 bool IdentifyOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) {
     if (error) *error = m;
@@ -290,6 +307,8 @@ bool IdentifyOptions::IsValid(std::string* error) const {
     return fail("identify: sideband_harmonics must be >= 0 and sideband_orders >= 1");
   if (!(min_count_probability > 0 && min_count_probability <= 1))
     return fail("identify: min_count_probability must be in (0, 1]");
+  if (!(min_count_bound_probability > 0.5 && min_count_bound_probability <= 1))
+    return fail("identify: min_count_bound_probability must be in (0.5, 1]");
   if (!(width_band_min_half_width_hz > 0))
     return fail("identify: width_band_min_half_width_hz must be > 0");
   if (!(width_calibration_scale > 0)) return fail("identify: width calibration scale must be > 0");
@@ -423,6 +442,9 @@ Identification Identify(const Record& record,
     const HumpFit& best = cf.best[k];
     id.load_zone_half_angle_rad = k > 0 ? best.shape.half_angle_rad : 0.0;
     count_reason = CountRefusal(cf, options);
+    const CountBound bound = LowerCountBound(cf, options);
+    id.count_at_least = bound.count;
+    id.count_at_least_probability = bound.probability;
     if (count_reason.empty()) {
       id.count_identifiable = true;
       id.count = k;
@@ -561,6 +583,10 @@ std::string Identification::BriefReport() const {
   } else {
     os << "defective rollers: not identified\n";
   }
+  if (count_at_least > 0)
+    os << "  at least " << count_at_least << " defective roller" << (count_at_least == 1 ? "" : "s")
+       << " (P(K >= " << count_at_least
+       << ") = " << FormatNumber("%.3f", count_at_least_probability) << ")\n";
   if (!probabilities.empty()) {
     os << "  P(K):";
     for (size_t k = 0; k < probabilities.size() && k <= 5; ++k)
@@ -594,6 +620,10 @@ std::string Identification::ToJson(int indent) const {
   ordered_json dr;
   dr["count"] = count_identifiable ? ordered_json(count) : ordered_json(nullptr);
   dr["probabilities"] = probs(probabilities);
+  if (count_at_least > 0)
+    dr["at_least"] = {{"count", count_at_least}, {"probability", count_at_least_probability}};
+  else
+    dr["at_least"] = nullptr;
   dr["probabilities_cage_average"] = probs(probabilities_cage);
   dr["probabilities_sidebands"] = probs(probabilities_sidebands);
   dr["positions_deg"] = count_identifiable ? ordered_json(positions_deg) : ordered_json(nullptr);
@@ -671,6 +701,7 @@ std::string Identification::ToJson(int indent) const {
   // What decided the statements: with these a reader can tell "uncertain" from "not stated here".
   ordered_json settings;
   settings["min_count_probability"] = options.min_count_probability;
+  settings["min_count_bound_probability"] = options.min_count_bound_probability;
   settings["width_max_count"] = options.width_max_count;
   settings["width_over_uncertain_count"] = options.width_over_uncertain_count;
   settings["count_needs_cage_hump"] = options.count_needs_cage_hump;

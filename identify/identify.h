@@ -50,6 +50,12 @@ struct IdentifyOptions {
   // on the tuning sets (docs/IDENTIFY.md) the counts stated at P 0.5-0.6 were right 8 times of
   // 20, those at 0.6-0.65 11 of 12.
   double min_count_probability = 0.6;
+  // A lower bound on the count, "at least k defective rollers", is stated at the largest k >= 1
+  // whose tail probability P(K >= k) reaches this, wherever the count fit passes every rule but
+  // the count's own probability (a stated count, or an uncertain one): rollers in adjacent or
+  // near slots merge their humps, so the fit often splits between k and k + 1 while ruling out
+  // fewer than k. 0.9 was set before it was measured (docs/IDENTIFY.md, "Lower bound").
+  double min_count_bound_probability = 0.9;
   // A count is stated only where the cage-synchronous average (feature A) by itself ranks a
   // count of one or more first: the load-zone humps are the count's physical evidence, and the
   // f_c sideband pattern alone (feature B) reads one roller's odd and even spin harmonics as a
@@ -194,7 +200,11 @@ struct Identification {
 
   // Count and positions (when count_identifiable).
   int count = 0;
-  std::vector<double> probabilities;            // P(K), K = 0..max_count (empty: not computed)
+  std::vector<double> probabilities;  // P(K), K = 0..max_count (empty: not computed)
+  // At least this many defective rollers, with P(K >= count_at_least); 0: no bound stated
+  // (IdentifyOptions::min_count_bound_probability).
+  int count_at_least = 0;
+  double count_at_least_probability = 0.0;
   std::vector<double> probabilities_cage;       // feature A alone
   std::vector<double> probabilities_sidebands;  // feature B alone (empty when not used)
   std::vector<double> positions_deg;       // defective rollers in the cage, from the first, in the
@@ -258,5 +268,14 @@ double DelayOfWidth(double width_m, double d, const Identification& id, const Id
 // min_count_probability, a hump as flat or as narrow as its shape allows (min_count_hump_exponent,
 // max_count_hump_exponent), or the two features confidently naming different counts.
 std::string CountRefusal(const CountFit& fit, const IdentifyOptions& options);
+
+// "At least `count` defective rollers" with P(K >= count) = probability: the largest count >= 1
+// whose tail reaches min_count_bound_probability, where the fit passes every statement rule of
+// CountRefusal but the count's own probability; count 0 when no bound is stated.
+struct CountBound {
+  int count = 0;
+  double probability = 0.0;
+};
+CountBound LowerCountBound(const CountFit& fit, const IdentifyOptions& options);
 
 }  // namespace spallkit::identify

@@ -181,6 +181,8 @@ ValidationReport ValidateOnFiles(const std::vector<std::string>& files,
         r.hump_smear_deg = shape.smear_rad * 180.0 / kPi;
       }
       if (id.count_identifiable) r.count_probability = id.probabilities[id.count];
+      r.count_at_least = id.count_at_least;
+      r.count_at_least_probability = id.count_at_least_probability;
       if (id.count_identifiable && id.count == r.true_count) {
         std::vector<int> slots;
         for (double p : id.positions_deg)
@@ -275,6 +277,17 @@ std::string ValidationReport::Summary() const {
     os << "  spalled records: " << spalled << "; count right " << right << " (positions right "
        << positions << "), wrong " << wrong << ", refused " << refused
        << "; healthy records given a count: " << healthy_stated << "\n";
+    // The lower bound "at least k": stated, true count at least k, and where the count was not.
+    int bound = 0, bound_right = 0, bound_uncounted = 0, bound_uncounted_above_one = 0;
+    for (const auto* r : rs) {
+      if (r->count_at_least == 0) continue;
+      ++bound;
+      bound_right += r->true_count >= r->count_at_least;
+      if (!r->count_stated) ++bound_uncounted, bound_uncounted_above_one += r->count_at_least > 1;
+    }
+    os << "  lower bounds (at least k): " << bound << ", true count >= k on " << bound_right
+       << "; on records without a stated count " << bound_uncounted << " (k >= 2 on "
+       << bound_uncounted_above_one << ")\n";
     // Reliability: stated P(count) against the fraction right.
     const double edges[] = {0.5, 0.8, 0.95, 0.99, 1.0000001};
     os << "  reliability of stated counts (P bin: stated, right, mean P):";
@@ -332,7 +345,7 @@ std::string ValidationReport::ToCsv() const {
         "pair_power_ratio,exclusive_delay_ms,exclusive_pair_power_ratio,exclusive_significance,"
         "width_from_exclusive_zone,cpu_s,"
         "log_evidence_cage,log_evidence_sidebands,true_release_delay_ms,hump_exponent,"
-        "hump_edge_gain,hump_smear_deg,reasons\n";
+        "hump_edge_gain,hump_smear_deg,count_at_least,count_at_least_probability,reasons\n";
   auto joined = [](const std::vector<double>& v) {
     std::string out;
     for (size_t i = 0; i < v.size(); ++i) {
@@ -375,7 +388,8 @@ std::string ValidationReport::ToCsv() const {
        << joined(r.log_evidence_sidebands) << ","
        << FormatNumber("%.4f", r.true_release_delay_s * 1e3) << ","
        << FormatNumber("%.3g", r.hump_exponent) << "," << FormatNumber("%.3g", r.hump_edge_gain)
-       << "," << FormatNumber("%.3g", r.hump_smear_deg) << ",\"" << reasons << "\"\n";
+       << "," << FormatNumber("%.3g", r.hump_smear_deg) << "," << r.count_at_least << ","
+       << FormatNumber("%.4g", r.count_at_least_probability) << ",\"" << reasons << "\"\n";
   }
   return os.str();
 }

@@ -51,6 +51,8 @@ struct ValidatedRecord {
   bool count_stated = false;
   int count = 0;
   double count_probability = 0.0;  // P(count) as stated
+  int count_at_least = 0;          // the lower bound stated (0: none)
+  double count_at_least_probability = 0.0;
   std::vector<double> probabilities;
   int count_cage = -1, count_sidebands = -1;  // each feature's most probable K (-1: none)
   double p_cage = 0.0, p_sidebands = 0.0;     // ...and its probability

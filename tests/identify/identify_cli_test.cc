@@ -69,6 +69,12 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["defective_rollers"]["count"].is_null());
   EXPECT_FALSE(j["identifiable"]["count"].get<bool>());
+  // The lower bound still stands: at least one defective roller, P(K >= 1) = 1 - P(0).
+  EXPECT_EQ(j["defective_rollers"]["at_least"]["count"], 1);
+  EXPECT_NEAR(j["defective_rollers"]["at_least"]["probability"].get<double>(),
+              1.0 - j0["defective_rollers"]["probabilities"]["0"].get<double>(),
+              1e-9);
+  EXPECT_DOUBLE_EQ(j["settings"]["min_count_bound_probability"].get<double>(), 0.9);
   EXPECT_DOUBLE_EQ(j["settings"]["min_count_probability"].get<double>(), 0.99);
   EXPECT_LT(j0["settings"]["min_count_probability"].get<double>(), 0.99);  // the default
   EXPECT_TRUE(j0["settings"]["width_max_count"].is_number_integer());

@@ -312,6 +312,32 @@ TEST(Refusals, NoCountWhereTheHumpIsAsFlatOrAsNarrowAsItsShapeAllows) {
   EXPECT_NE(error.find("max_count_hump_exponent"), std::string::npos) << error;
 }
 
+// IdentifyOptions::min_count_bound_probability on a count fit made by hand: two or three rollers,
+// neither probable enough to state, give "at least 2" at P(K >= 2) = 0.96; a stricter bound
+// probability gives "at least 1"; a fit refused for another reason gives none.
+TEST(Refusals, LowerBoundWhereTheCountIsUncertain) {
+  CountFit fit =
+      HandMadeCountFit({0.0, 0.04, 0.50, 0.46}, {0.05, 0.10, 0.45, 0.40}, {0.0, 0.10, 0.50, 0.40});
+  IdentifyOptions o;
+  EXPECT_NE(CountRefusal(fit, o).find("uncertain (most probable 2 with P = 0.50"),
+            std::string::npos)
+      << CountRefusal(fit, o);
+  CountBound b = LowerCountBound(fit, o);
+  EXPECT_EQ(b.count, 2);
+  EXPECT_NEAR(b.probability, 0.96, 1e-12);
+  o.min_count_bound_probability = 0.97;
+  b = LowerCountBound(fit, o);
+  EXPECT_EQ(b.count, 1);
+  EXPECT_NEAR(b.probability, 1.0, 1e-12);
+  o = IdentifyOptions();
+  fit.probability_cage = {0.45, 0.20, 0.20, 0.15};  // the cage average alone ranks 0 first
+  EXPECT_EQ(LowerCountBound(fit, o).count, 0);
+  o.min_count_bound_probability = 0.5;  // a bound must be more probable than its negation
+  std::string error;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("min_count_bound_probability"), std::string::npos) << error;
+}
+
 TEST(Refusals, TooFewCageRevolutionsForACount) {
   const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 20, {{0}}));  // 8.3 revolutions
   IdentifyOptions o;
