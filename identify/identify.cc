@@ -594,17 +594,19 @@ std::string Identification::BriefReport() const {
     os << "  (fit chi2 scale " << FormatNumber("%.2f", count_fit.chi2_scale) << " / "
        << FormatNumber("%.2f", count_fit.chi2_scale_sidebands) << ")\n";
   }
-  if (width_identifiable)
+  if (width_identifiable) {
     os << "width: " << FormatNumber("%.2f", width_m * 1e3) << " mm (90 % interval "
        << FormatNumber("%.2f", width_low_m * 1e3) << "-" << FormatNumber("%.2f", width_high_m * 1e3)
        << " mm; entry-exit delay " << FormatNumber("%.3f", width_fit.best.delay_s * 1e3)
        << " ms)\n";
-  if (width_identifiable && !width_counts.empty()) {
-    os << "  width: the same with each likely count (";
-    for (size_t i = 0; i < width_counts.size(); ++i) os << (i ? ", " : "") << width_counts[i];
-    os << " defective rollers), although the count itself is not stated\n";
-  } else
+    if (!width_counts.empty()) {
+      os << "  width: the same with each likely count (";
+      for (size_t i = 0; i < width_counts.size(); ++i) os << (i ? ", " : "") << width_counts[i];
+      os << " defective rollers), although the count itself is not stated\n";
+    }
+  } else {
     os << "width: not identified\n";
+  }
   for (const auto& r : reasons) os << "  " << r << "\n";
   return os.str();
 }

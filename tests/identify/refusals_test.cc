@@ -129,6 +129,9 @@ TEST(Refusals, WidthWithoutACountWhenEveryLikelyCountGivesTheSamePair) {
   ASSERT_EQ(stated.count, 2);
   ASSERT_TRUE(stated.width_identifiable) << stated.BriefReport();
   ASSERT_LT(stated.probabilities[2], 1.0) << stated.BriefReport();
+  // The text report states the width once and does not also call it not identified.
+  EXPECT_EQ(stated.BriefReport().find("width: not identified"), std::string::npos)
+      << stated.BriefReport();
 
   o.min_count_probability = 1.0;
   o.width_over_uncertain_count = false;
@@ -146,6 +149,9 @@ TEST(Refusals, WidthWithoutACountWhenEveryLikelyCountGivesTheSamePair) {
   EXPECT_GE(over.width_high_m, stated.width_high_m);
   ASSERT_FALSE(over.width_counts.empty());
   EXPECT_EQ(over.width_counts.front(), 2);  // the most probable count first
+  EXPECT_NE(over.BriefReport().find("the same with each likely count"), std::string::npos);
+  EXPECT_EQ(over.BriefReport().find("width: not identified"), std::string::npos)
+      << over.BriefReport();
   EXPECT_NE(over.ToJson().find("\"over_counts\""), std::string::npos);
 
   o.width_count_mass = 1.0;
