@@ -49,6 +49,7 @@ Recorder::Recorder(const BearingModel& model, const RecorderOptions& options)
   if (Wants(Output::kCage)) {
     idx_omega_ = add("/cage/omega", 1, "rad/s");
     idx_slip_ = add("/cage/slip_ratio", 1, "1");
+    idx_cage_centre_ = add("/cage/centre", 2, "m");
   }
   if (Wants(Output::kRollers)) {
     idx_spin_ = add("/rollers/spin", z, "rad/s");
@@ -160,11 +161,16 @@ void Recorder::Sample() {
     }
   }
   if (idx_omega_ >= 0) {
-    const double w = model_.CageMotion().omega;
+    const BodyMotion cage = model_.CageMotion();
+    const double w = cage.omega;
     const double wt = model_.TheoreticalCageSpeed(model_.time());
     series_[idx_omega_].data.push_back(w);
     series_[idx_slip_].data.push_back(wt != 0.0 ? (w - wt) / wt
                                                 : std::numeric_limits<double>::quiet_NaN());
+    // The cage's mass centre (x, y): a roller-guided cage's pockets do not hold it on the
+    // bearing's centre, and where it runs sets the rollers' spacing.
+    series_[idx_cage_centre_].data.push_back(cage.cx);
+    series_[idx_cage_centre_].data.push_back(cage.cy);
   }
   if (idx_spin_ >= 0) {
     for (int j = 0; j < z; ++j) {

@@ -89,7 +89,7 @@ class Recorder {
   int idx_field_time_ = -1, idx_field_ = -1;
   std::vector<Series> series_;
   int idx_time_ = -1, idx_outer_ = -1, idx_inner_ = -1, idx_cage_force_ = -1, idx_omega_ = -1,
-      idx_slip_ = -1, idx_spin_ = -1, idx_orbit_ = -1, idx_energy_ = -1;
+      idx_slip_ = -1, idx_cage_centre_ = -1, idx_spin_ = -1, idx_orbit_ = -1, idx_energy_ = -1;
   // Acceleration.
   bool accel_ = false;
   double fine_h_ = 0.0;

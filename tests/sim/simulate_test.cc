@@ -303,6 +303,13 @@ TEST(SimulateTest, WritesTheDocumentedHdf5Layout) {
     EXPECT_EQ(f.DatasetDims(p),
               (std::vector<size_t>{static_cast<size_t>(n), static_cast<size_t>(z)}));
   }
+  // The cage's mass centre, (x, y) per sample, in metres; it starts on the bearing's centre.
+  EXPECT_EQ(f.DatasetDims("/cage/centre"),
+            (std::vector<size_t>{static_cast<size_t>(n), static_cast<size_t>(2)}));
+  EXPECT_EQ(f.ReadStringAttribute("/cage/centre", "units").value(), "m");
+  const auto centre = f.ReadDataset("/cage/centre");
+  EXPECT_NEAR(centre[0], 0.0, 1e-9);
+  EXPECT_NEAR(centre[1], 0.0, 1e-9);
   EXPECT_EQ(f.ReadStringAttribute("/contact/roller_outer", "units").value(), "N");
   EXPECT_EQ(f.ReadStringAttribute("/signals/accel_y", "units").value(), "m/s^2");
   // Orbit angles start at the mesher's roller angles: roller 0 on the load line (-pi/2).
@@ -326,7 +333,7 @@ TEST(SimulateTest, OutputsNotAskedForAreNotWritten) {
   Simulation(scene, o).Run();
   h5::File f = h5::File::OpenReadOnly(o.output_path);
   EXPECT_EQ(f.ListDatasets(),
-            (std::vector<std::string>{"/cage/omega", "/cage/slip_ratio", "/time"}));
+            (std::vector<std::string>{"/cage/centre", "/cage/omega", "/cage/slip_ratio", "/time"}));
   std::remove(o.output_path.c_str());
 }
 
