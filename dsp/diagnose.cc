@@ -706,24 +706,17 @@ void ExplainAndConclude(const DetectionContext& ctx,
 }
 
 // The outer race's comb on the pre-whitened record, over the candidate bands that start at or
-// above min_low_hz (a whole second analysis); nullopt when no candidate band starts that high.
-std::optional<double> OuterRacePValuePrewhitened(const Record& record,
-                                                 const BearingGeometry& bearing,
-                                                 double shaft_hz,
-                                                 const DiagnoseOptions& options,
-                                                 double min_low_hz) {
+// above min_low_hz (a whole second analysis; the caller makes sure one does).
+double OuterRacePValuePrewhitened(const Record& record,
+                                  const BearingGeometry& bearing,
+                                  double shaft_hz,
+                                  const DiagnoseOptions& options,
+                                  double min_low_hz) {
   DiagnoseOptions again = options;
   again.prewhiten = true;
   again.kurtogram_map = false;
   again.min_band_low_hz = std::max(options.min_band_low_hz, min_low_hz);
-  Diagnosis d;
-  try {
-    d = Diagnose(record, bearing, shaft_hz, again);
-  } catch (const InputError&) {
-    if (again.min_band_low_hz > options.min_band_low_hz) return std::nullopt;  // no such band
-    throw;
-  }
-  for (const auto& det : d.faults)
+  for (const auto& det : Diagnose(record, bearing, shaft_hz, again).faults)
     if (det.component == FaultComponent::kOuterRace) return det.p_value;
   return 1.0;
 }
@@ -741,6 +734,7 @@ void ConfirmOuterRaceOnPrewhitened(const Record& record,
                                    const DetectionContext& ctx,
                                    const DetectionOptions& dopt,
                                    const DiagnoseOptions& options,
+                                   const std::vector<KurtogramNode>& candidates,
                                    Diagnosis* d) {
   if (d->verdict != Verdict::kOuterRace || !options.confirm_outer_race || options.prewhiten) return;
   const FaultFamily& outer = d->families[static_cast<int>(FaultComponent::kOuterRace)];
@@ -763,12 +757,14 @@ void ConfirmOuterRaceOnPrewhitened(const Record& record,
   }
   bool above_compliance = options.outer_race_min_band_orders > 0;
   if (p > options.false_alarm_probability) {
-    std::optional<double> high =
-        OuterRacePValuePrewhitened(record, bearing, shaft_hz, options, min_low_hz);
-    if (!high) {
+    // The pre-whitened record's analysis has this one's candidate bands (the bands depend on the
+    // record's length and rate only): is any of them that high?
+    const bool high_band = std::any_of(candidates.begin(), candidates.end(), [&](const auto& c) {
+      return c.band().low_hz >= min_low_hz;
+    });
+    if (!high_band) {
       // No band above the compliance's orders below fs/2: any band confirms, with a warning.
       above_compliance = false;
-      high = OuterRacePValuePrewhitened(record, bearing, shaft_hz, options, 0.0);
       d->warnings.push_back(
           "outer race: no candidate band starts at or above " +
           FormatNumber("%g", options.outer_race_min_band_orders) + " x BPFO (" +
@@ -776,7 +772,9 @@ void ConfirmOuterRaceOnPrewhitened(const Record& record,
           " Hz) below fs/2, so the record cannot tell a spall's impacts from the varying "
           "compliance of a healthy bearing");
     }
-    p = std::min(p, *high);
+    p = std::min(p,
+                 OuterRacePValuePrewhitened(
+                     record, bearing, shaft_hz, options, high_band ? min_low_hz : 0.0));
   }
   if (p <= options.false_alarm_probability) return;
   for (auto& det : d->faults) {
@@ -839,7 +837,7 @@ Diagnosis Diagnose(const Record& record,
   ExplainAndConclude(
       ctx, dopt, needs.duration_s, d.measured_shaft_hz.value_or(shaft_hz), options, &d);
   ConfirmOuterRaceOnPrewhitened(
-      record, bearing, shaft_hz, analyzer, needs.alpha_need, ctx, dopt, options, &d);
+      record, bearing, shaft_hz, analyzer, needs.alpha_need, ctx, dopt, options, candidates, &d);
   return d;
 }
 
