@@ -53,8 +53,10 @@ bool BearingModelOptions::IsValid(std::string* error) const {
 }
 
 namespace {
-// The options with what the scene sets for them: [model] contact_damping, for every contact.
+// The options with what the scene sets for them: [model] contact_damping, for every contact;
+// the cage's radial play (bearing.cage_radial_play_mm, always set: it is geometry).
 BearingModelOptions WithSceneSettings(BearingModelOptions options, const Scene& scene) {
+  options.cage_guide.radial_play_m = scene.geometry.cage_radial_play_m;
   if (scene.model.contact_damping)
     options.contact_damping_ratio = options.hybrid.contact_damping_ratio =
         *scene.model.contact_damping;

@@ -78,7 +78,8 @@ struct BearingModelOptions {
   // Rigid-roller contact options (hybrid and lumped models).
   HybridOptions hybrid;
   LumpedOptions lumped;
-  // Roller-guided cage's radial play, every model (constraints.h).
+  // Roller-guided cage's radial guide, every model (constraints.h); its play is the scene's
+  // bearing.cage_radial_play_mm (BearingModel sets it).
   CageGuideOptions cage_guide;
   // Diagnostic: the solver keeps a work ledger per contact pair and constraint
   // (solver::SolverOptions::track_contributor_work; slower; FE models).

@@ -99,8 +99,8 @@ void RigidPart::LoadState(const std::string& bytes) {
 }
 
 bool CageGuideOptions::IsValid(std::string* error) const {
-  if (radial_play_m > 0.0 && stiffness_n_per_m > 0.0) return true;
-  if (error) *error = "cage guide: radial_play_m and stiffness_n_per_m must be > 0";
+  if (radial_play_m >= 0.0 && stiffness_n_per_m > 0.0) return true;
+  if (error) *error = "cage guide: radial_play_m must be >= 0 and stiffness_n_per_m > 0";
   return false;
 }
 

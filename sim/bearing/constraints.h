@@ -63,12 +63,13 @@ class RigidPart : public solver::ForceContributor {
   double work_ = 0.0;
 };
 
-// Roller-guided cage (both models, the same assumption): each pocket holds its roller's centre
+// Roller-guided cage (every model, the same assumption): each pocket holds its roller's centre
 // within +-radial_play of the pitch radius, measured along the pocket's centre line in the cage
 // frame; beyond, a linear spring. Straight pocket walls alone leave the cage free to drift
 // radially with the rollers sliding along their orbits (hybrid: cage centre 12 mm off; full FE:
-// 1.9 mm in 5 ms at 6000 rpm, until the webs' corners struck the rollers). Table 1 gives no
-// pocket shape, so the play is an assumption (docs/BEARING_MODEL.md).
+// 1.9 mm in 5 ms at 6000 rpm, until the webs' corners struck the rollers). The play bounds how
+// far off-centre the cage runs, so it sets the rollers' uneven spacing (docs/BEARING_MODEL.md).
+// A BearingModel takes it from the scene (bearing.cage_radial_play_mm).
 struct CageGuideOptions {
   double radial_play_m = 0.5e-3;
   double stiffness_n_per_m = 2e8;  // whole section

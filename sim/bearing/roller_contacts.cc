@@ -140,12 +140,15 @@ RollerContacts::RollerContacts(const Scene& scene,
     pocket_cos_.push_back(std::cos(phi));
     pocket_sin_.push_back(std::sin(phi));
     intact_directions_.emplace_back(intact_profiles_.back());
-    // Seated (model.start): touching the outer raceway along the pocket line.
+    // Seated (model.start): touching the outer raceway along the pocket line, unless that lies
+    // beyond the cage's radial play (a wide spall facing the race): the pocket holds it there.
     profiles_.push_back(p);
     directions_.emplace_back(p);
-    const double centre_radius = scene_.model.start == StartPose::kSeated
-                                     ? SeatOnOuterRace(j, phi, housing.outer_raceway_radius_m)
-                                     : housing.pitch_radius_m;
+    const double centre_radius =
+        scene_.model.start == StartPose::kSeated
+            ? std::min(SeatOnOuterRace(j, phi, housing.outer_raceway_radius_m),
+                       housing.pitch_radius_m + cage_guide_.radial_play_m)
+            : housing.pitch_radius_m;
     Body b;
     b.x = centre_radius * std::cos(phi) + cx;
     b.y = centre_radius * std::sin(phi) + cy;

@@ -293,6 +293,7 @@ void ReadGeometry(Section s, SceneGeometry* g) {
                " mm): the rings are at least as wide as the rollers' contact");
   g->diametral_clearance_m = s.Number("diametral_clearance_mm", 0.02, {0.0, 1.0}) * kMm;
   g->pocket_clearance_m = s.Number("pocket_clearance_mm", 0.2, {0.0, 5.0}) * kMm;
+  g->cage_radial_play_m = s.Number("cage_radial_play_mm", 0.5, {0.0, 5.0}) * kMm;
   g->outer_ring_outer_diameter_m = s.Number("outer_ring_outer_diameter_mm", 52.0, kPositive) * kMm;
   g->inner_ring_bore_diameter_m = s.Number("inner_ring_bore_diameter_mm", 25.0, kPositive) * kMm;
   g->cage_inner_diameter_m = s.Number("cage_inner_diameter_mm", 35.5, kPositive) * kMm;

@@ -65,6 +65,9 @@ struct SceneGeometry {
   double ring_width_m = 15e-3;
   double diametral_clearance_m = 20e-6;  // P_d
   double pocket_clearance_m = 0.2e-3;    // pocket width - roller diameter (total)
+  // Roller-guided cage: each pocket holds its roller's centre within +- this of the pitch radius
+  // (CageGuideOptions::radial_play_m); Table 1 gives no pocket shape, so 0.5 mm is assumed.
+  double cage_radial_play_m = 0.5e-3;
   double outer_ring_outer_diameter_m = 52e-3;
   double inner_ring_bore_diameter_m = 25e-3;
   double cage_inner_diameter_m = 35.5e-3;  // Table 1 lists 17.75 / 21 mm: radii, see SCENE.md

@@ -116,10 +116,10 @@ TEST(BearingModelTest, BuildsPartsPairsConstraintsAndSensors) {
 }
 
 // The full-FE cage is roller-guided (CagePocketGuide): at 6000 rpm its centre stays within the
-// pocket play (0.5 mm) plus the rollers' own excursion and the energy books balance. With a free
-// cage (the straight pocket walls only; measured with a 1 m play) the centre drifts 2.1 mm by
-// 4 ms and 6.3 mm by 12 ms, and at 0.5 mm the webs' corners strike the rollers (energy error
-// 28.7 %; docs/BEARING_MODEL.md, "Speed range of the full-FE section").
+// radial play (bearing.cage_radial_play_mm) plus the rollers' own excursion and the energy books
+// balance. With a free cage (the straight pocket walls only; measured with a 1 m play) the centre
+// drifts 2.1 mm by 4 ms and 6.3 mm by 12 ms, and at 0.5 mm the webs' corners strike the rollers
+// (energy error 28.7 %; docs/BEARING_MODEL.md, "Speed range of the full-FE section").
 TEST(BearingModelTest, FullFeCageStaysCentredAtSpeed) {
   const std::string scene = std::string(SPALLKIT_SOURCE_DIR) + "/datasets/scenes/width-1.38.toml";
   FeBearingModel model(
@@ -139,6 +139,56 @@ TEST(BearingModelTest, FullFeCageStaysCentredAtSpeed) {
   // the instantaneous speed of this faceted 1 mm model rattles by +-15 %, and which value 8 ms
   // lands on depends on the compiler's floating-point contraction alone (-march=native FMA).
   EXPECT_NEAR(omega_sum / omega_samples, model.TheoreticalCageSpeed(8e-3), 0.1 * 261.1);
+}
+
+// The roller-guided cage runs against its radial guide: the hybrid's cage centre settles at the
+// play's edge within a few ms (the off-centre cage whirls with itself, held only by the guide) and
+// stays there, so the play sets how unevenly the rollers are spaced, a deviation of up to
+// atan(play / R_pitch) from 27.7 deg that turns with the cage and modulates every roller passage at
+// f_c. The play is the scene's bearing.cage_radial_play_mm. Hybrid, 6000 rpm, lubricant traction
+// law, 30 ms (~2 s per run); largest deviation of a roller pair's spacing from uniform 1.1 deg
+// at 0.1 mm play, 3.5 deg at 0.5 mm (docs/BEARING_MODEL.md, "Cage").
+TEST(BearingModelTest, HybridCageRunsAtTheEdgeOfItsRadialPlay) {
+  const double pitch_radius = 0.5 * 38.5e-3;
+  auto run = [&](double play_mm, double* spacing_deviation) {
+    Scene scene = LoadScene(Scene0(),
+                            {"model.fidelity=hybrid",
+                             "mesh.size_mm=2.0",
+                             "friction.model=ehl",
+                             "operation.speed_rpm=6000",
+                             "bearing.cage_radial_play_mm=" + std::to_string(play_mm)});
+    scene.defects.clear();
+    const auto model = MakeBearingModel(scene);
+    EXPECT_DOUBLE_EQ(model->options().cage_guide.radial_play_m, play_mm * 1e-3);
+    double min_offset = 1.0, max_offset = 0.0, deviation = 0.0;
+    const int z = scene.geometry.bearing.num_elements;
+    for (int k = 1; k <= 30; ++k) {  // every ms up to 30 ms; the ramp ends at 5 ms
+      model->Run(1e-3 * k);
+      if (k < 10) continue;
+      const BodyMotion cage = model->CageMotion();
+      const double offset = std::hypot(cage.cx, cage.cy);
+      min_offset = std::min(min_offset, offset), max_offset = std::max(max_offset, offset);
+      const BodyMotion r0 = model->RollerMotion(0);
+      for (int j = 1; j < z; ++j) {
+        const BodyMotion r = model->RollerMotion(j);
+        const double between = std::atan2(r0.cx * r.cy - r0.cy * r.cx, r0.cx * r.cx + r0.cy * r.cy);
+        const double uniform = 2.0 * std::numbers::pi * j / z;
+        deviation = std::max(deviation,
+                             std::abs(std::remainder(between - uniform, 2.0 * std::numbers::pi)));
+      }
+    }
+    EXPECT_LT(max_offset, play_mm * 1e-3 + 0.03e-3) << play_mm;
+    EXPECT_GT(min_offset, 0.5 * play_mm * 1e-3) << play_mm;  // against the guide throughout
+    *spacing_deviation = deviation;
+  };
+  double tight = 0.0, loose = 0.0;
+  run(0.1, &tight);
+  run(0.5, &loose);
+  // Two rollers' spacing: each is off by up to the cage's offset plus its own tangential pocket
+  // clearance (0.1 mm), over the pitch radius.
+  EXPECT_LT(tight, 2.0 * (0.1e-3 + 0.13e-3) / pitch_radius);
+  EXPECT_LT(loose, 2.0 * (0.1e-3 + 0.53e-3) / pitch_radius);
+  EXPECT_GT(loose, 2.5 * tight);
 }
 
 // model.race_contact = "curved" against "faceted": the rims touch the raceways as

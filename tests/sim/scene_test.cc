@@ -38,6 +38,7 @@ TEST(Scene, EmptySceneGivesThePaperDefaultsInSi) {
   EXPECT_DOUBLE_EQ(s.geometry.thickness_m, 9e-3);
   EXPECT_DOUBLE_EQ(s.geometry.diametral_clearance_m, 0.02e-3);
   EXPECT_DOUBLE_EQ(s.geometry.pocket_clearance_m, 0.2e-3);
+  EXPECT_DOUBLE_EQ(s.geometry.cage_radial_play_m, 0.5e-3);
   EXPECT_DOUBLE_EQ(s.geometry.outer_ring_outer_diameter_m, 52e-3);
   EXPECT_DOUBLE_EQ(s.geometry.inner_ring_bore_diameter_m, 25e-3);
   EXPECT_DOUBLE_EQ(s.materials.cage.youngs_modulus_pa, 100e9);
@@ -158,6 +159,8 @@ TEST(Scene, BadScenesGiveOneLineErrorsNamingFileLineAndKey) {
   ExpectOneLineError(ErrorOf("[friction]\nmu_static = 0.001\n"), "friction.mu_dynamic");
   ExpectOneLineError(ErrorOf("[bearing]\npocket_clearance_mm = 4.0\n"),
                      "bearing.pocket_clearance_mm");
+  ExpectOneLineError(ErrorOf("[bearing]\ncage_radial_play_mm = -0.1\n"),
+                     "bearing.cage_radial_play_mm");
   ExpectOneLineError(ErrorOf("[run]\noutputs = [\"movie\"]\n"), "run.outputs: unknown output");
   ExpectOneLineError(ErrorOf("[bearing]\ncatalog = \"X1\"\n"), "bearing.catalog");
   ExpectOneLineError(ErrorOf("[mesh\n"), "bad.toml:1:");
@@ -195,6 +198,19 @@ TEST(Scene, SpallLengthDefaultsToThroughLengthAndPartialNeedsTheHybridModel) {
   ExpectOneLineError(
       ErrorOf("[model]\nfidelity = \"hybrid\"\n[[defects]]\nroller = 1\nlength_mm = 0\n"),
       "defects.0.length_mm: must be > 0");
+}
+
+// The roller-guided cage's radial play is a geometry key of its own, independent of the pocket
+// clearance (Table 1 gives the pocket's width, not its shape).
+TEST(Scene, CageRadialPlayIsAKeyOfItsOwn) {
+  EXPECT_DOUBLE_EQ(
+      ParseScene("[bearing]\npocket_clearance_mm = 0.4\n", "a.toml").geometry.cage_radial_play_m,
+      0.5e-3);
+  const Scene s = ParseScene("[bearing]\ncage_radial_play_mm = 0.1\n", "b.toml");
+  EXPECT_DOUBLE_EQ(s.geometry.cage_radial_play_m, 0.1e-3);
+  EXPECT_DOUBLE_EQ(s.geometry.pocket_clearance_m, 0.2e-3);
+  EXPECT_NE(s.effective_toml.find("cage_radial_play_mm = 0.1"), std::string::npos)
+      << s.effective_toml;
 }
 
 // The radial load ramps with the speed unless its own ramp is set (0: a step at t = 0).
