@@ -395,7 +395,7 @@ BENCHMARK(BM_FalseAlarmSimulatedHealthyHybridLong)
     ->Unit(benchmark::kSecond);
 // The same with the cage's radial play at 0.1 mm (half Table 1's pocket clearance) instead of
 // the default 0.5 mm: the cage runs off-centre by its play, so the rollers' cage-locked uneven
-// spacing, and the cage-rate modulation it gives every roller passage, shrink five times
+// spacing, and the cage-rate modulation it gives every roller passage, shrink with it
 // (docs/BEARING_MODEL.md, "Cage"; docs/DIAGNOSIS.md, "Longer records").
 void BM_FalseAlarmSimulatedHealthyHybridLongTightCage(benchmark::State& state) {
   SimulatedHealthy(state,
