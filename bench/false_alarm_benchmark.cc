@@ -381,8 +381,8 @@ BENCHMARK(BM_FalseAlarmSimulatedHealthyHybrid)->Arg(10)->Iterations(1)->Unit(ben
 // The same scene on records long enough to claim the cage (>= 20 of its periods after the
 // start-up): 1200 rpm for 2.6 s, 2400 rpm for 1.6 s, and the paper's study speed, 6000 rpm, for
 // 0.65 s (~7 min of simulation on one core). Reported apart: at 2400 and 6000 rpm these records
-// carry a BPFO comb high in the spectrum and a cage-rate modulation (docs/DIAGNOSIS.md,
-// "Empirical false-alarm rate").
+// carry a BPFO comb high in the spectrum (the rollers' entry into the load zone) and a cage-rate
+// modulation (the cage off-centre by its radial play; docs/DIAGNOSIS.md, "Longer records").
 void BM_FalseAlarmSimulatedHealthyHybridLong(benchmark::State& state) {
   SimulatedHealthy(state,
                    {{"hybrid", 1200, 2.6, Friction::kTraction},
