@@ -51,7 +51,8 @@ std::string SimulationSummary::BriefReport() const {
           "= 0)";
   if (cage_omega_theory != 0.0)
     os << "\ncage " << cage_omega_mean << " rad/s (theory " << cage_omega_theory
-       << "), slip ratio S = " << cage_slip_mean * 100 << " %";
+       << "), slip ratio S = " << cage_slip_mean * 100 << " %, centre " << cage_offset_mean * 1e3
+       << " mm off the bearing's";
   return os.str();
 }
 
@@ -192,6 +193,12 @@ SimulationSummary Simulation::Run() {
       sum.cage_omega_mean = acc / n;
       sum.cage_omega_theory = model_->TheoreticalCageSpeed(duration);
       sum.cage_slip_mean = sum.cage_omega_mean / sum.cage_omega_theory - 1.0;
+    }
+    if (const Recorder::Series* c = recorder_->Find("/cage/centre"); c && n > 0) {
+      double offset = 0.0;
+      for (size_t i = 0; i < t.size() && 2 * i + 1 < c->data.size(); ++i)
+        if (t[i] >= t_from) offset += std::hypot(c->data[2 * i], c->data[2 * i + 1]);
+      sum.cage_offset_mean = offset / n;
     }
   }
   if (stopped) return sum;

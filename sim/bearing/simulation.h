@@ -58,8 +58,11 @@ struct SimulationSummary {
   solver::Energies energies;
   double energy_balance_error = 0.0;
   double hourglass_to_internal = 0.0;
-  // Cage after the ramp (samples with t >= 2 ramp_s, or the last half if that is empty).
+  // Cage after the ramp (samples with t >= 2 ramp_s, or the last half if that is empty); its
+  // centre's mean distance from the bearing's (m): a roller-guided cage runs off-centre by about
+  // its radial play (docs/BEARING_MODEL.md, "Cage").
   double cage_omega_mean = 0.0, cage_omega_theory = 0.0, cage_slip_mean = 0.0;
+  double cage_offset_mean = 0.0;
   // Per contact pair / constraint energy accounts (options.model.track_contributor_work only).
   std::vector<solver::ContributorLedger> ledger;
   std::string BriefReport() const;
