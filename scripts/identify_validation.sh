@@ -11,8 +11,11 @@
 # SPALLKIT_CHECK_ARGS="--width-max-count 1". SPALLKIT_LUBRICATED=1 makes the sets with the
 # main job's lubricant traction law and film on the races instead of the sets' dry Coulomb
 # 0.15 / 0.12 (pockets at the scene's 0.01 / 0.005; docs/IDENTIFY.md, "Sets with lubricant
-# traction"): the sweep files are copied to OUT with that change. About 8 min of generation and 5 min of checks on
-# 2 cores. Uses build/apps/spall (SPALLKIT_SPALL overrides).
+# traction"): the sweep files are copied to OUT with that change. SPALLKIT_BASE_SET adds one
+# line to every sweep's [base.set] (copied likewise), e.g.
+# SPALLKIT_BASE_SET='"bearing.cage_radial_play_mm" = 0.1' (docs/BEARING_MODEL.md, "Cage radial
+# play"). About 8 min of generation and 5 min of checks on 2 cores. Uses build/apps/spall
+# (SPALLKIT_SPALL overrides).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SPALL=${SPALLKIT_SPALL:-build/apps/spall}
@@ -32,6 +35,16 @@ for set in $SETS; do
     grep -q '^"friction.model" = "ehl"$' "$lubricated" ||
       { echo "identify_validation.sh: $sweep has no friction lines to replace" >&2; exit 2; }
     sweep="$lubricated"
+  fi
+  if [ -n "${SPALLKIT_BASE_SET:-}" ]; then
+    with_set="$OUT/identify-$set-base-set.toml"
+    awk -v line="$SPALLKIT_BASE_SET" -v root="$PWD/datasets/scenes/" '
+      /^scene = "\.\.\/scenes\// { sub(/"\.\.\/scenes\//, "\"" root) }
+      { print }
+      /^\[base\.set\]$/ { print line; added = 1 }
+      END { if (!added) exit 3 }' "$sweep" >"$with_set" ||
+      { echo "identify_validation.sh: $sweep has no [base.set] table" >&2; exit 2; }
+    sweep="$with_set"
   fi
   "$SPALL" dataset run "$sweep" --out "$OUT/$set" \
     --workers "$WORKERS" >"$OUT/$set.generate.txt"
