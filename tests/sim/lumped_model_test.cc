@@ -248,6 +248,22 @@ TEST(LumpedModelTest, StartsSeatedWithoutAStartUpImpact) {
   }
 }
 
+// A spall whose drop exceeds the cage's radial play (2.27 mm: 0.205 mm against 0.1 mm) would
+// seat its roller beyond the pocket's guide; the seat stops at the play's edge, so the run starts
+// with no guide spring compressed and keeps its energy books (seated on the race instead, the
+// spring's energy, outside the books, stops the run at its first energy check: 210 %).
+TEST(LumpedModelTest, SeatsAWideSpallWithinTheCagesRadialPlay) {
+  const Scene scene = LumpedScene({"defects.0.width_mm=2.27",
+                                   "bearing.cage_radial_play_mm=0.1",
+                                   "operation.speed_rpm=6000",
+                                   "run.duration_s=0.003",
+                                   "run.outputs=[\"energy\"]"});
+  Simulation sim(scene, {});
+  const SimulationSummary s = sim.Run();
+  ASSERT_TRUE(s.completed);
+  EXPECT_LT(s.energy_balance_error, 1e-3) << s.BriefReport();
+}
+
 // A radial load applied at once overshoots: the inner ring on the bearing's radial stiffness is
 // an oscillator, whose peak under a step is at most twice its static deflection, first reached
 // half a period after the step. The scene limits take the contact stress at that bound
