@@ -52,7 +52,7 @@ std::string SimulationSummary::BriefReport() const {
   if (cage_omega_theory != 0.0)
     os << "\ncage " << cage_omega_mean << " rad/s (theory " << cage_omega_theory
        << "), slip ratio S = " << cage_slip_mean * 100 << " %, centre " << cage_offset_mean * 1e3
-       << " mm off the bearing's";
+       << " mm off the bearing's (radial play " << cage_radial_play * 1e3 << " mm)";
   return os.str();
 }
 
@@ -199,6 +199,7 @@ SimulationSummary Simulation::Run() {
       for (size_t i = 0; i < t.size() && 2 * i + 1 < c->data.size(); ++i)
         if (t[i] >= t_from) offset += std::hypot(c->data[2 * i], c->data[2 * i + 1]);
       sum.cage_offset_mean = offset / n;
+      sum.cage_radial_play = model_->options().cage_guide.radial_play_m;
     }
   }
   if (stopped) return sum;

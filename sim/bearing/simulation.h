@@ -62,7 +62,7 @@ struct SimulationSummary {
   // centre's mean distance from the bearing's (m): a roller-guided cage runs off-centre by about
   // its radial play (docs/BEARING_MODEL.md, "Cage").
   double cage_omega_mean = 0.0, cage_omega_theory = 0.0, cage_slip_mean = 0.0;
-  double cage_offset_mean = 0.0;
+  double cage_offset_mean = 0.0, cage_radial_play = 0.0;  // m
   // Per contact pair / constraint energy accounts (options.model.track_contributor_work only).
   std::vector<solver::ContributorLedger> ledger;
   std::string BriefReport() const;

@@ -185,7 +185,8 @@ TEST(BearingModelTest, HybridCageRunsAtTheEdgeOfItsRadialPlay) {
     // The summary's mean offset (from 2 ramp_s = 10 ms) lies between the two.
     EXPECT_GE(summary.cage_offset_mean, min_offset) << summary.BriefReport();
     EXPECT_LE(summary.cage_offset_mean, max_offset) << summary.BriefReport();
-    EXPECT_NE(summary.BriefReport().find(" mm off the bearing's"), std::string::npos);
+    EXPECT_DOUBLE_EQ(summary.cage_radial_play, play_mm * 1e-3);
+    EXPECT_NE(summary.BriefReport().find(" mm off the bearing's (radial play "), std::string::npos);
     *spacing_deviation = deviation;
   };
   double tight = 0.0, loose = 0.0;
