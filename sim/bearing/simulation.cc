@@ -181,23 +181,22 @@ SimulationSummary Simulation::Run() {
   sum.ledger = model.ContributorLedgers();
   sum.hourglass_to_internal =
       sum.energies.internal > 0 ? sum.energies.hourglass / sum.energies.internal : 0.0;
-  if (const Recorder::Series* w = recorder_->Find("/cage/omega")) {
+  // The "cage" output records /cage/omega and /cage/centre (x, y) together, sample by sample.
+  const Recorder::Series* w = recorder_->Find("/cage/omega");
+  const Recorder::Series* c = recorder_->Find("/cage/centre");
+  if (w && c) {
     const auto& t = recorder_->Find("/time")->data;
     double t_from = 2.0 * scene.operation.ramp_s;
     if (t.empty() || t.back() < t_from) t_from = t.empty() ? 0.0 : 0.5 * t.back();
-    double acc = 0.0;
+    double omega = 0.0, offset = 0.0;
     int n = 0;
     for (size_t i = 0; i < t.size() && i < w->data.size(); ++i)
-      if (t[i] >= t_from) acc += w->data[i], ++n;
+      if (t[i] >= t_from)
+        omega += w->data[i], offset += std::hypot(c->data[2 * i], c->data[2 * i + 1]), ++n;
     if (n > 0) {
-      sum.cage_omega_mean = acc / n;
+      sum.cage_omega_mean = omega / n;
       sum.cage_omega_theory = model_->TheoreticalCageSpeed(duration);
       sum.cage_slip_mean = sum.cage_omega_mean / sum.cage_omega_theory - 1.0;
-    }
-    if (const Recorder::Series* c = recorder_->Find("/cage/centre"); c && n > 0) {
-      double offset = 0.0;
-      for (size_t i = 0; i < t.size() && 2 * i + 1 < c->data.size(); ++i)
-        if (t[i] >= t_from) offset += std::hypot(c->data[2 * i], c->data[2 * i + 1]);
       sum.cage_offset_mean = offset / n;
       sum.cage_radial_play = model_->options().cage_guide.radial_play_m;
     }
