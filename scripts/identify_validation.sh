@@ -23,26 +23,25 @@ OUT=${1:-runs/identify}
 SETS="report report-long tune width width-multi width-three"
 WORKERS=$(nproc)
 mkdir -p "$OUT"
+# A sweep file copied to OUT names its scene by absolute path (the sweep's is relative to it).
+absolute_scene() { sed -e "s|^scene = \"\.\./scenes/|scene = \"$PWD/datasets/scenes/|" "$1"; }
 for set in $SETS; do
   echo "== generate identify-$set ($OUT/$set)" >&2
   sweep="datasets/sweeps/identify-$set.toml"
   if [ "${SPALLKIT_LUBRICATED:-0}" = 1 ]; then
-    # The copy names the scene by its absolute path (the sweep's is relative to the sweep).
     lubricated="$OUT/identify-$set-lubricated.toml"
-    sed -e "s|^scene = \"\.\./scenes/|scene = \"$PWD/datasets/scenes/|" \
-      -e '/^"friction.mu_static" = 0.15$/d' \
-      -e 's|^"friction.mu_dynamic" = 0.12$|"friction.model" = "ehl"|' "$sweep" >"$lubricated"
+    absolute_scene "$sweep" | sed -e '/^"friction.mu_static" = 0.15$/d' \
+      -e 's|^"friction.mu_dynamic" = 0.12$|"friction.model" = "ehl"|' >"$lubricated"
     grep -q '^"friction.model" = "ehl"$' "$lubricated" ||
       { echo "identify_validation.sh: $sweep has no friction lines to replace" >&2; exit 2; }
     sweep="$lubricated"
   fi
   if [ -n "${SPALLKIT_BASE_SET:-}" ]; then
     with_set="$OUT/identify-$set-base-set.toml"
-    awk -v line="$SPALLKIT_BASE_SET" -v root="$PWD/datasets/scenes/" '
-      /^scene = "\.\.\/scenes\// { sub(/"\.\.\/scenes\//, "\"" root) }
+    absolute_scene "$sweep" | awk -v line="$SPALLKIT_BASE_SET" '
       { print }
       /^\[base\.set\]$/ { print line; added = 1 }
-      END { if (!added) exit 3 }' "$sweep" >"$with_set" ||
+      END { if (!added) exit 3 }' >"$with_set" ||
       { echo "identify_validation.sh: $sweep has no [base.set] table" >&2; exit 2; }
     sweep="$with_set"
   fi
