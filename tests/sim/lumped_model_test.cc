@@ -149,12 +149,17 @@ TEST(LumpedModelTest, SensorPathReproducesTheFeHousingUnderAnotherForce) {
 // the cage runs near its pure-rolling speed. Friction 0.15 / 0.12, above the spall's tipping
 // threshold w / 4r = 0.106 (docs/BEARING_MODEL.md, "Spall trapping"), so the defective roller
 // rolls through too: its f_b = 2 |w_r - w_c| / 2 pi within 1 % of the healthy ones'.
+// The window starts at 30 ms, past one cage turn (24 ms) after the 2 ms ramp, when every roller
+// has crossed the load zone: a spall that starts facing the outer race outside the load zone has
+// no inner-race contact to roll it out before its roller first gets there (from angle 0 at 17 ms
+// with a 0.1 mm cage play; with 0.5 mm the cage's start-up swing pushes it onto the inner race
+// earlier, docs/BEARING_MODEL.md, "Cage"); the tipping threshold is about a loaded roller.
 // The window (40 ms, 1.6 cage turns) is short and the slip depends on where the spall starts:
-// at step safety 0.15 throughout (the converged step), starts at 0 / 120 / 240 deg give healthy
-// rollers 3.9 / 1.3 / 1.6 % below pure rolling (outside the load zone they have no traction and
-// lag) and cage slip -1.97 / -0.58 / -0.75 % (six starts: -0.58 to -1.97 %). So each start's
-// lag is checked against 5 %, the mean lag against 3 % and the mean cage slip against 2 %:
-// rolling, where a trapped or sliding roller would lag by tens of %.
+// starts at 0 / 120 / 240 deg give healthy rollers 2.2 / 1.1 / 0.5 % below pure rolling (outside
+// the load zone they have no traction and lag) and cage slip -1.45 / -0.78 / -0.67 % with the
+// default cage play 0.5 mm; 0.4 / 0.3 / 0.4 % and -0.35 / -0.26 / -0.30 % with 0.1 mm. So each
+// start's lag is checked against 5 %, the mean lag against 3 % and the mean cage slip against
+// 2 %: rolling, where a trapped or sliding roller would lag by tens of %.
 TEST(LumpedModelTest, RollersRollAndTheCageFollowsPureRolling) {
   double slip = 0, lag = 0;
   const int starts = 3;
@@ -165,7 +170,7 @@ TEST(LumpedModelTest, RollersRollAndTheCageFollowsPureRolling) {
                                      "operation.ramp_s=0.002",
                                      "friction.mu_static=0.15",
                                      "friction.mu_dynamic=0.12",
-                                     "run.duration_s=0.05",
+                                     "run.duration_s=0.07",
                                      "defects.0.angle_deg=" + angle});
     Simulation sim(scene, {});
     const SimulationSummary s = sim.Run();
@@ -181,7 +186,7 @@ TEST(LumpedModelTest, RollersRollAndTheCageFollowsPureRolling) {
     double rel[2] = {0, 0}, pure = 0;
     int n = 0;
     for (size_t i = 0; i < t.size(); ++i) {
-      if (t[i] < 0.01) continue;
+      if (t[i] < 0.03) continue;
       rel[0] += std::abs(spin[i * z + 0] - cage[i]);
       for (int j = 1; j < z; ++j) rel[1] += std::abs(spin[i * z + j] - cage[i]) / (z - 1);
       pure += (ws - cage[i]) * (g.pitch_diameter_m - g.element_diameter_m) / g.element_diameter_m;
