@@ -23,6 +23,8 @@ struct IdentifyStatementOptions {
   std::vector<double> temperatures;
   CLI::Option* temperatures_option = nullptr;
   bool pattern_per_parity = false;
+  int sideband_spin_step = identify::IdentifyOptions().sideband_spin_step;
+  CLI::Option* spin_step_option = nullptr;
   bool width_needs_count = false;
   bool count_without_cage_hump = false;
   bool count_with_extreme_hump = false;
@@ -53,6 +55,11 @@ struct IdentifyStatementOptions {
                  pattern_per_parity,
                  "the count's sideband feature with one cage-angle pattern for the odd and one for "
                  "the even spin harmonics (measured, not the default: docs/IDENTIFY.md)");
+    spin_step_option = sub.add_option(
+        "--sideband-spin-step",
+        sideband_spin_step,
+        "the count's sideband feature on the harmonics of this many times the spin rate: 2 "
+        "(default), those of f_b; 1, every spin harmonic (docs/IDENTIFY.md)");
     sub.add_flag("--width-needs-count",
                  width_needs_count,
                  "state the width only with a stated count (by default also when every likely "
@@ -99,6 +106,10 @@ struct IdentifyStatementOptions {
               t->count.temperature_cage = temperatures[0];
               t->count.temperature_sidebands = temperatures[1];
             });
+    if (spin_step_option && spin_step_option->count() > 0)
+      apply("--sideband-spin-step", std::to_string(sideband_spin_step), [&](auto* t) {
+        t->sideband_spin_step = sideband_spin_step;
+      });
     if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
     if (width_needs_count) o->width_over_uncertain_count = false;
     if (count_without_cage_hump) o->count_needs_cage_hump = false;

@@ -72,6 +72,11 @@ std::vector<char> LoadZoneSamples(const HumpFit& fit,
   return zone;
 }
 
+// Feature B's base rate in spin harmonics: the per-parity model works on every spin harmonic.
+int SidebandSpinStep(const IdentifyOptions& o) {
+  return o.count.sideband_pattern_per_parity ? 1 : o.sideband_spin_step;
+}
+
 // Identify's width step for the best configuration of k defective rollers (id's count fit):
 // fills id's width fields and returns why no width is stated ("" when it is). sew is the width
 // band's smoothed squared envelope at fs, z and d the bearing's roller count and diameter, wo the
@@ -99,7 +104,9 @@ std::string WidthForCount(int k,
     const double half_turn = 0.5 / id->spin_hz;
     for (size_t a = 0; a < ph.size(); ++a)
       for (size_t b = a + 1; b < ph.size(); ++b) {
-        double lag = std::fmod((ph[b] - ph[a]) / (2.0 * kPi * id->spin_hz), half_turn);
+        // phi_k is the spall's phase at feature B's base rate, SidebandSpinStep(options) x f_s.
+        double lag = std::fmod(
+            (ph[b] - ph[a]) / (2.0 * kPi * SidebandSpinStep(options) * id->spin_hz), half_turn);
         if (lag < 0) lag += half_turn;
         cross_lags.push_back(lag);
         cross_lags.push_back(half_turn - lag);
@@ -305,6 +312,8 @@ bool IdentifyOptions::IsValid(std::string* error) const {
   if (min_cage_revolutions < 2) return fail("identify: min_cage_revolutions must be >= 2");
   if (sideband_harmonics < 0 || sideband_orders < 1)
     return fail("identify: sideband_harmonics must be >= 0 and sideband_orders >= 1");
+  if (sideband_spin_step != 1 && sideband_spin_step != 2)
+    return fail("identify: sideband_spin_step must be 1 (every spin harmonic) or 2 (those of f_b)");
   if (!(min_count_probability > 0 && min_count_probability <= 1))
     return fail("identify: min_count_probability must be in (0, 1]");
   if (!(min_count_bound_probability > 0.5 && min_count_bound_probability <= 1))
@@ -431,8 +440,14 @@ Identification Identify(const Record& record,
     const int samples_per_turn = static_cast<int>(rate / id.cage_hz);
     id.cage_average =
         AverageOverCage(se, rate, id.cage_hz, std::min(options.cage_bins, samples_per_turn));
-    id.sidebands = MeasureSpinSidebands(
-        se, rate, id.spin_hz, id.cage_hz, options.sideband_harmonics, options.sideband_orders);
+    id.sidebands = MeasureSpinSidebands(se,
+                                        rate,
+                                        id.spin_hz,
+                                        id.cage_hz,
+                                        options.sideband_harmonics,
+                                        options.sideband_orders,
+                                        60,
+                                        SidebandSpinStep(options));
     id.count_fit = FitRollerCount(id.cage_average, &id.sidebands, z, count);
     const CountFit& cf = id.count_fit;
     id.probabilities = cf.probability;
@@ -721,6 +736,7 @@ std::string Identification::ToJson(int indent) const {
   settings["temperatures"] = {{"cage_average", options.count.temperature_cage},
                               {"sidebands", options.count.temperature_sidebands}};
   settings["sideband_pattern_per_parity"] = options.count.sideband_pattern_per_parity;
+  settings["sideband_spin_step"] = SidebandSpinStep(options);
   j["settings"] = settings;
   return j.dump(indent);
 }

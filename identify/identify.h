@@ -45,6 +45,13 @@ struct IdentifyOptions {
   int min_cage_revolutions = 4;
   int sideband_harmonics = 4;  // spin harmonics j of feature B
   int sideband_orders = 4;     // f_c orders m of feature B
+  // Feature B's lines are the harmonics of sideband_spin_step x f_s. 2: those of f_b = 2 f_s, on
+  // which a roller's outer- and inner-race impacts (half a spin turn apart) add, so that their
+  // cage-angle pattern is the cage average's (feature A's hump); 1: every spin harmonic, whose odd
+  // ones carry the difference of the two impacts with another pattern, which one shared pattern
+  // fits only with a phantom roller (docs/IDENTIFY.md, "Count and positions"). With
+  // CountFitOptions::sideband_pattern_per_parity the step is 1 (that model is about the parity).
+  int sideband_spin_step = 2;
   CountFitOptions count;
   // The count is reported when its probability reaches this; otherwise it is "uncertain". 0.6:
   // on the tuning sets (docs/IDENTIFY.md) the counts stated at P 0.5-0.6 were right 8 times of

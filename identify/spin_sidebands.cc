@@ -16,12 +16,14 @@ SpinSidebands MeasureSpinSidebands(std::span<const double> se,
                                    double cage_hz,
                                    int harmonics,
                                    int orders,
-                                   int window_bins) {
-  SPALLKIT_CHECK(spin_hz > 0 && cage_hz > 0 && rate_hz > 0, "bad sideband arguments");
+                                   int window_bins,
+                                   int spin_step) {
+  SPALLKIT_CHECK(spin_hz > 0 && cage_hz > 0 && rate_hz > 0 && spin_step >= 1,
+                 "bad sideband arguments");
   const int n = static_cast<int>(se.size()) - static_cast<int>(se.size()) % 2;
   SPALLKIT_CHECK(n >= 16, "squared envelope too short for sidebands");
   SpinSidebands out;
-  out.spin_hz = spin_hz;
+  out.spin_hz = spin_step * spin_hz;
   out.cage_hz = cage_hz;
   out.orders = orders;
   const double nyquist = 0.5 * rate_hz;
@@ -44,7 +46,7 @@ SpinSidebands MeasureSpinSidebands(std::span<const double> se,
   for (size_t k = 0; k < spec.size(); ++k) power[k] = std::norm(spec[k]) / (double(n) * n);
   // Bins near any comb line (every harmonic up to J + 1, orders up to M + 2) are not floor.
   std::vector<char> masked(spec.size(), 0);
-  for (int j = 0; j <= out.harmonics + 1; ++j)
+  for (int j = 0; j <= spin_step * (out.harmonics + 1); ++j)
     for (int m = -(orders + 2); m <= orders + 2; ++m) {
       const double f = j * spin_hz + m * cage_hz;
       if (f < 0) continue;

@@ -107,7 +107,8 @@ TEST(CountFit, ThreeRollersAndTheirOrder) {
 // One roller whose inner-race impacts reach a horizontal sensor whole while its outer-race ones
 // come with sin psi: the odd and even spin harmonics have different cage-angle patterns. Feature
 // B with one pattern per parity (CountFitOptions::sideband_pattern_per_parity) takes it for one
-// roller; with one pattern for all harmonics a second, phantom roller fits the difference.
+// roller; with one pattern for every spin harmonic (IdentifyOptions::sideband_spin_step 1) a
+// second, phantom roller fits the difference.
 TEST(CountFit, OuterAndInnerRaceImpactsWithTheirOwnPatternsAreOneRoller) {
   auto spec = RollerRecordSpec(1200, 20, {{0, 1.38, 0}});
   spec.sensor_angle_rad = 0.5 * kPi;
@@ -121,12 +122,38 @@ TEST(CountFit, OuterAndInnerRaceImpactsWithTheirOwnPatternsAreOneRoller) {
   EXPECT_EQ(std::max_element(pb.begin(), pb.end()) - pb.begin(), 1) << id.BriefReport();
   ASSERT_TRUE(id.count_identifiable) << id.BriefReport();
   EXPECT_EQ(id.count, 1);
-  // One pattern for every harmonic (the default model) fits these lines worse (reduced chi2 20
-  // against 1) and makes the roller two.
+  // One pattern for every spin harmonic fits these lines worse (reduced chi2 20 against 1) and
+  // makes the roller two.
   o.count.sideband_pattern_per_parity = false;
+  o.sideband_spin_step = 1;
   const Identification shared = IdentifyRecord(MakeSyntheticRecord(spec), 1200, 10000, o);
   EXPECT_GT(shared.count_fit.chi2_scale_sidebands, 5.0 * id.count_fit.chi2_scale_sidebands)
       << shared.BriefReport();
+}
+
+// The same roller with feature B on the harmonics of f_b = 2 f_s (sideband_spin_step 2, the
+// default): there the outer- and inner-race impacts, half a spin turn apart, add in phase, so
+// every line carries their sum, whose cage-angle pattern is the cage average's, and the one
+// shared pattern (feature A's hump) fits the lines nearly to their noise (reduced chi2 1.4, 20 on
+// every spin harmonic). It still fits them best with two rollers here: the sum of a projected and
+// an unprojected hump lies outside feature A's hump shapes, which feature B borrows.
+TEST(CountFit, FbHarmonicsCarryOneRollersImpactsWithTheCageAveragesPattern) {
+  auto spec = RollerRecordSpec(1200, 20, {{0, 1.38, 0}});
+  spec.sensor_angle_rad = 0.5 * kPi;
+  spec.inner_race_projected = false;
+  IdentifyOptions o = ExactModel();
+  o.count.sensor_angle_rad = 0.5 * kPi;
+  ASSERT_EQ(o.sideband_spin_step, 2);
+  const Record r = MakeSyntheticRecord(spec);
+  const Identification fb = IdentifyRecord(r, 1200, 10000, o);
+  o.sideband_spin_step = 1;
+  const Identification every = IdentifyRecord(r, 1200, 10000, o);
+  ASSERT_GT(fb.count_fit.sideband_lines, 0) << fb.BriefReport();
+  std::printf("feature B's reduced chi2: %.2f on the f_b harmonics, %.2f on every spin harmonic\n",
+              fb.count_fit.chi2_scale_sidebands,
+              every.count_fit.chi2_scale_sidebands);
+  EXPECT_LT(fb.count_fit.chi2_scale_sidebands, 2.0);
+  EXPECT_GT(every.count_fit.chi2_scale_sidebands, 5.0 * fb.count_fit.chi2_scale_sidebands);
 }
 
 TEST(CountFit, HorizontalSensorSeesOneRollerAsTwoLobes) {
