@@ -21,8 +21,9 @@
 //     S_jm = p_j M_m e^{-i m (theta_0 + delta)} sum_k a_k e^{-i j phi_k} e^{i m 2 pi s_k / Z},
 // M_m the Fourier coefficients of H (without the bin width); theta_0, the shape and the strengths
 // a_k from feature A's fit of the same configuration; delta a common offset within +/- half a
-// slot; phi_k the spall's spin phase on roller k (phi_1 = 0, the others on a grid of 24, two
-// coordinate sweeps); p_j one complex factor per spin harmonic (impact spectrum, outer/inner
+// slot; phi_k the spall's phase on roller k at the lines' base rate (f_s, or f_b where they are
+// the harmonics of f_b: IdentifyOptions::sideband_spin_step; phi_1 = 0, the others on a grid of
+// 24, two coordinate sweeps); p_j one complex factor per harmonic (impact spectrum, outer/inner
 // alternation, slip smear), by least squares.
 // With CountFitOptions::sideband_pattern_per_parity (not the default) instead
 //     S_jm = p_j G^(j mod 2)_m sum_k a_k e^{-i j phi_k} e^{i m 2 pi s_k / Z},

@@ -1,5 +1,6 @@
 // The f_c sideband pattern of the roller comb: complex squared-envelope spectrum lines at
-// j f_s + m f_c (f_s = f_b / 2 the roller spin rate, j = 1..J spin harmonics, m = -M..M), the
+// j f_s + m f_c (f_s = f_b / 2 the roller spin rate, j = 1..J spin harmonics, m = -M..M; or on
+// the even ones only, j f_b + m f_c: IdentifyOptions::sideband_spin_step), the
 // count's second feature, independent of the cage-synchronous average (which holds only the
 // j = 0 lines: the impacts at f_b are not synchronous with the cage and average out of it).
 //
@@ -26,7 +27,7 @@
 namespace spallkit::identify {
 
 struct SpinSidebands {
-  double spin_hz = 0.0;
+  double spin_hz = 0.0;  // the base rate of the harmonics j (f_s, or f_b with spin_step 2)
   double cage_hz = 0.0;
   int harmonics = 0;                        // J
   int orders = 0;                           // M
@@ -37,8 +38,10 @@ struct SpinSidebands {
   double FrequencyHz(int j, int m) const { return j * spin_hz + m * cage_hz; }
 };
 
-// Lines of se (sampled at rate_hz, first sample at t = 0). Lines above the Nyquist rate of se are
-// left out (harmonics reduced so that every line fits).
+// Lines of se (sampled at rate_hz, first sample at t = 0) at j (spin_step spin_hz) + m cage_hz:
+// spin_step 2 takes the harmonics of f_b = 2 f_s (the result's spin_hz is then f_b). Every spin
+// harmonic's comb is kept out of the floors. Lines above the Nyquist rate of se are left out
+// (harmonics reduced so that every line fits).
 SpinSidebands MeasureSpinSidebands(std::span<const double> se,
                                    double rate_hz,
                                    double spin_hz,
