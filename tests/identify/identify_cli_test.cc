@@ -86,8 +86,9 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
       << j["identifiable"]["reasons"].dump();
 }
 
-// The sideband feature's model with one pattern per parity (not the default) is chosen on the
-// command line and said in the settings; the sample record is one roller either way. Each
+// The sideband feature's model with one pattern per parity (not the default) and its harmonics
+// (--sideband-spin-step) are chosen on the command line and said in the settings; the sample
+// record is one roller either way. Each
 // statement rule's switch (width rule, cage hump, hump shape, per-count combination) is said in
 // the settings too.
 TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
@@ -96,11 +97,19 @@ TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["settings"]["sideband_pattern_per_parity"].get<bool>());
+  EXPECT_EQ(j["settings"]["sideband_spin_step"], 1);  // the per-parity model's harmonics
   EXPECT_EQ(j["defective_rollers"]["count"], 1);
   const auto base = RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json");
   ASSERT_EQ(base.code, 0) << base.err;
   EXPECT_FALSE(
       nlohmann::json::parse(base.out)["settings"]["sideband_pattern_per_parity"].get<bool>());
+  EXPECT_EQ(nlohmann::json::parse(base.out)["settings"]["sideband_spin_step"], 2);
+  EXPECT_EQ(nlohmann::json::parse(base.out)["defective_rollers"]["count"], 1);
+  const auto every = RunSpall("identify " + kSample +
+                              " --bearing N205EM --rpm 1200 --json --sideband-spin-step 1");
+  ASSERT_EQ(every.code, 0) << every.err;
+  EXPECT_EQ(nlohmann::json::parse(every.out)["settings"]["sideband_spin_step"], 1);
+  EXPECT_EQ(nlohmann::json::parse(every.out)["defective_rollers"]["count"], 1);
   EXPECT_TRUE(
       nlohmann::json::parse(base.out)["settings"]["width_over_uncertain_count"].get<bool>());
   const auto strict =
