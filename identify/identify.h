@@ -65,12 +65,12 @@ struct IdentifyOptions {
   double min_count_bound_probability = 0.9;
   // A count is stated only where the cage-synchronous average (feature A) by itself ranks a
   // count of one or more first: the load-zone humps are the count's physical evidence, and the
-  // f_c sideband pattern alone (feature B) reads one roller's odd and even spin harmonics as a
-  // second roller (docs/IDENTIFY.md, "Count and positions"). On the six lumped validation
+  // f_c sideband pattern alone (feature B) ranks a phantom second roller first on many one-roller
+  // records (docs/IDENTIFY.md, "Count and positions"). On the six lumped validation
   // sets no count is stated where feature A ranks 0 first; on the hybrid records of the paper's
-  // width experiment all 8 such statements were wrong (0.46 mm spalls stated as 2 or 3 at
-  // P 0.62-0.95; docs/IDENTIFY.md, "Hybrid records of the paper's experiment"). false: the
-  // combined probability alone decides.
+  // width experiment, with feature B on every spin harmonic, all 8 such statements were wrong
+  // (0.46 mm spalls stated as 2 or 3 at P 0.62-0.95; docs/IDENTIFY.md, "Hybrid records of the
+  // paper's experiment"). false: the combined probability alone decides.
   bool count_needs_cage_hump = true;
   // A count is not stated when its load-zone hump (feature A's fit of the most probable count) has
   // a shape at the edge of what the fit allows, which no single roller's strikes give:
