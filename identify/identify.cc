@@ -355,6 +355,7 @@ IdentifyOptions SignalModelOptions() {
   o.width_calibration_relative_sd = 0.0;
   o.width_max_count = 1 << 20;
   o.width_max_diameter_fraction = 0.8;
+  o.sideband_spin_step = 1;
   return o;
 }
 

@@ -193,8 +193,10 @@ struct IdentifyOptions {
 
 // The options calibrated for records of the synthetic signal model (identify/synthetic_record.h)
 // instead of spallkit's simulator: untempered evidence (the model is exact there), humps down to
-// 0.1 of the strongest counted (no unmodelled impacts outside the load zone), and the geometric
-// width relation (events at the spall's edges, no scatter).
+// 0.1 of the strongest counted (no unmodelled impacts outside the load zone), the geometric
+// width relation (events at the spall's edges, no scatter), and feature B on every spin harmonic
+// (sideband_spin_step 1: there the outer- and inner-race events share one cage-angle pattern, so
+// the odd harmonics fit the one-pattern model too and add their lines).
 IdentifyOptions SignalModelOptions();
 
 struct Identification {

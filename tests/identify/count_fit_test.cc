@@ -125,7 +125,7 @@ TEST(CountFit, OuterAndInnerRaceImpactsWithTheirOwnPatternsAreOneRoller) {
   // One pattern for every spin harmonic fits these lines worse (reduced chi2 20 against 1) and
   // makes the roller two.
   o.count.sideband_pattern_per_parity = false;
-  o.sideband_spin_step = 1;
+  ASSERT_EQ(o.sideband_spin_step, 1);  // ExactModel(): every spin harmonic
   const Identification shared = IdentifyRecord(MakeSyntheticRecord(spec), 1200, 10000, o);
   EXPECT_GT(shared.count_fit.chi2_scale_sidebands, 5.0 * id.count_fit.chi2_scale_sidebands)
       << shared.BriefReport();
@@ -143,7 +143,7 @@ TEST(CountFit, FbHarmonicsCarryOneRollersImpactsWithTheCageAveragesPattern) {
   spec.inner_race_projected = false;
   IdentifyOptions o = ExactModel();
   o.count.sensor_angle_rad = 0.5 * kPi;
-  ASSERT_EQ(o.sideband_spin_step, 2);
+  o.sideband_spin_step = 2;
   const Record r = MakeSyntheticRecord(spec);
   const Identification fb = IdentifyRecord(r, 1200, 10000, o);
   o.sideband_spin_step = 1;
