@@ -99,22 +99,27 @@ TEST(CountFit, ThreeRollersAndTheirOrder) {
   EXPECT_NEAR(id.positions_deg[2], 7 * 360.0 / 13, 1e-9);
 }
 
-// A horizontal sensor under a vertical load: an impact along the roller's radius at orbit angle
-// psi reaches it with sin(psi), so one roller's load-zone hump has two lobes, at the zone's
-// flanks, and none on the load line. Given the sensor's direction, the count fit projects its
-// humps the same way: one roller, and a closer fit of the cage average than with the sensor
-// taken on the load line or with no projection.
-// One roller whose inner-race impacts reach a horizontal sensor whole while its outer-race ones
-// come with sin psi: the odd and even spin harmonics have different cage-angle patterns. Feature
+// One roller (1.38 mm, 20 dB) whose inner-race impacts reach a horizontal sensor whole while its
+// outer-race ones come with sin psi, and the exact model's options for that sensor.
+SyntheticRecordSpec UnprojectedInnerRaceRecord() {
+  auto spec = RollerRecordSpec(1200, 20, {{0, 1.38, 0}});
+  spec.sensor_angle_rad = 0.5 * kPi;
+  spec.inner_race_projected = false;
+  return spec;
+}
+IdentifyOptions HorizontalSensorExactModel() {
+  IdentifyOptions o = ExactModel();
+  o.count.sensor_angle_rad = 0.5 * kPi;
+  return o;
+}
+
+// That roller's odd and even spin harmonics have different cage-angle patterns. Feature
 // B with one pattern per parity (CountFitOptions::sideband_pattern_per_parity) takes it for one
 // roller; with one pattern for every spin harmonic (IdentifyOptions::sideband_spin_step 1) a
 // second, phantom roller fits the difference.
 TEST(CountFit, OuterAndInnerRaceImpactsWithTheirOwnPatternsAreOneRoller) {
-  auto spec = RollerRecordSpec(1200, 20, {{0, 1.38, 0}});
-  spec.sensor_angle_rad = 0.5 * kPi;
-  spec.inner_race_projected = false;
-  IdentifyOptions o = ExactModel();
-  o.count.sensor_angle_rad = 0.5 * kPi;
+  const SyntheticRecordSpec spec = UnprojectedInnerRaceRecord();
+  IdentifyOptions o = HorizontalSensorExactModel();
   o.count.sideband_pattern_per_parity = true;
   const Identification id = IdentifyRecord(MakeSyntheticRecord(spec), 1200, 10000, o);
   ASSERT_EQ(id.probabilities_sidebands.size(), id.probabilities.size()) << id.BriefReport();
@@ -138,13 +143,9 @@ TEST(CountFit, OuterAndInnerRaceImpactsWithTheirOwnPatternsAreOneRoller) {
 // every spin harmonic). It still fits them best with two rollers here: the sum of a projected and
 // an unprojected hump lies outside feature A's hump shapes, which feature B borrows.
 TEST(CountFit, FbHarmonicsCarryOneRollersImpactsWithTheCageAveragesPattern) {
-  auto spec = RollerRecordSpec(1200, 20, {{0, 1.38, 0}});
-  spec.sensor_angle_rad = 0.5 * kPi;
-  spec.inner_race_projected = false;
-  IdentifyOptions o = ExactModel();
-  o.count.sensor_angle_rad = 0.5 * kPi;
+  IdentifyOptions o = HorizontalSensorExactModel();
   o.sideband_spin_step = 2;
-  const Record r = MakeSyntheticRecord(spec);
+  const Record r = MakeSyntheticRecord(UnprojectedInnerRaceRecord());
   const Identification fb = IdentifyRecord(r, 1200, 10000, o);
   o.sideband_spin_step = 1;
   const Identification every = IdentifyRecord(r, 1200, 10000, o);
@@ -156,6 +157,11 @@ TEST(CountFit, FbHarmonicsCarryOneRollersImpactsWithTheCageAveragesPattern) {
   EXPECT_GT(every.count_fit.chi2_scale_sidebands, 5.0 * fb.count_fit.chi2_scale_sidebands);
 }
 
+// A horizontal sensor under a vertical load: an impact along the roller's radius at orbit angle
+// psi reaches it with sin(psi), so one roller's load-zone hump has two lobes, at the zone's
+// flanks, and none on the load line. Given the sensor's direction, the count fit projects its
+// humps the same way: one roller, and a closer fit of the cage average than with the sensor
+// taken on the load line or with no projection.
 TEST(CountFit, HorizontalSensorSeesOneRollerAsTwoLobes) {
   auto spec = RollerRecordSpec(1200, 10, {{0, 1.38, 0}});
   spec.sensor_angle_rad = 0.5 * kPi;
