@@ -157,6 +157,23 @@ TEST(CountFit, FbHarmonicsCarryOneRollersImpactsWithTheCageAveragesPattern) {
   EXPECT_GT(every.count_fit.chi2_scale_sidebands, 5.0 * fb.count_fit.chi2_scale_sidebands);
 }
 
+// Feature B's lines reach 4 f_b + 4 f_c by default; the squared envelope is made alias-free up to
+// them whatever the diagnosis band (here a 300 Hz one, narrower than those lines: without its
+// rate set for the f_b harmonics, two of the four would be left out).
+TEST(CountFit, SquaredEnvelopeHoldsEveryFbHarmonicOfTheSidebands) {
+  const Record r = MakeSyntheticRecord(RollerRecordSpec(1200, 10, {{0, 1.38, 0}}));
+  const BearingGeometry g = CatalogBearing("N205EM");
+  dsp::Diagnosis d = dsp::Diagnose(r, g, 20.0);
+  d.band.high_hz = d.band.low_hz + 300.0;
+  IdentifyOptions o;
+  o.radial_load_n = 10000.0;
+  const Identification id = Identify(r, g, 20.0, d, o);
+  ASSERT_EQ(o.sideband_spin_step, 2);
+  EXPECT_EQ(id.sidebands.harmonics, o.sideband_harmonics);
+  EXPECT_NEAR(id.sidebands.spin_hz, 2.0 * id.spin_hz, 1e-9);
+  EXPECT_GT(id.sidebands.FrequencyHz(o.sideband_harmonics, o.sideband_orders), 4.0 * 115.0);
+}
+
 // A horizontal sensor under a vertical load: an impact along the roller's radius at orbit angle
 // psi reaches it with sin(psi), so one roller's load-zone hump has two lobes, at the zone's
 // flanks, and none on the load line. Given the sensor's direction, the count fit projects its
