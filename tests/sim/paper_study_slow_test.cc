@@ -2,7 +2,8 @@
 // 0.005) the defective roller of every width scene slides and resumes rolling (its Fig. 9), while
 // a through-length spall (the paper's 2-D section) traps the rigid roller for good; and the
 // width / depth / count trends. Runs: 2 mm housing mesh, 2 ms speed ramp, 50 ms (80 ms at
-// 4000 rpm), statistics from 10 ms (1.6 cage revolutions at 6000 rpm). Slow: 18 runs. With the
+// 4000 rpm), statistics from 10 ms (1.6 cage revolutions at 6000 rpm; the last test 70 ms from
+// 30 ms). Slow: 18 runs. With the
 // lubricant traction law, a through-length spall rolls (EhlTraction...); with 2 mm of the roller
 // intact, a spall wider than that part's elastic approach no longer strikes (the last test).
 #include <gtest/gtest.h>
@@ -19,7 +20,7 @@
 namespace spallkit::sim {
 namespace {
 
-// What one short hybrid run of a paper scene gives, statistics from 10 ms.
+// What one short hybrid run of a paper scene gives, statistics from `from` seconds.
 struct PaperRun {
   double accel_rms = 0;         // vertical, mean removed, m/s^2
   double slip_rms = 0;          // cage sliding ratio S, RMS with the mean, %
@@ -27,7 +28,10 @@ struct PaperRun {
   RollerSlidingSummary roller;  // roller 0
 };
 
-PaperRun RunScene(const std::string& name, std::vector<std::string> sets, double duration) {
+PaperRun RunScene(const std::string& name,
+                  std::vector<std::string> sets,
+                  double duration,
+                  double from = 0.01) {
   sets.insert(
       sets.end(),
       {"mesh.size_mm=2.0", "operation.ramp_s=0.002", "run.duration_s=" + std::to_string(duration)});
@@ -42,7 +46,6 @@ PaperRun RunScene(const std::string& name, std::vector<std::string> sets, double
   const std::vector<double>& slip = r.Find("/cage/slip_ratio")->data;
   const std::vector<double>& cage = r.Find("/cage/omega")->data;
   const std::vector<double>& accel = r.Acceleration(0);  // the top sensor's y channel
-  const double from = 0.01;
   PaperRun out;
   double mean = 0;
   int n = 0;
@@ -124,8 +127,10 @@ TEST(PaperStudyTest, DefectiveRollerSlidesAndResumesAndWiderSpallsShakeMore) {
 // Depth (1.38 mm wide, 6000 rpm, 50 ms): 0.59 and 1.18 mm give the same vibration within +-30 %
 // (the spall's starting angle alone moves it by +-11 % in 0.1 s runs, docs/PAPER.md); count
 // (4000 rpm, 80 ms: two cage revolutions after 10 ms): three defective rollers shake the bearing
-// more, slide the cage more and push harder on their pockets than one (x1.5; measured x2.0, x2.8,
-// x1.9).
+// more, slide the cage more and push harder on their pockets than one (x1.5, the cage's sliding
+// x1.2; measured x2.5, x3.0, x2.8). How much more the cage slides depends on its radial play:
+// x1.34 on these runs with 0.1 mm instead of the default 0.5 mm (docs/BEARING_MODEL.md, "Cage
+// radial play"); the paper's finding is the rise.
 TEST(PaperStudyTest, DepthChangesLittleAndMoreDefectiveRollersShakeMore) {
   const PaperRun shallow = RunScene("depth-0.59", {}, 0.05);
   const PaperRun deep = RunScene("depth-1.18", {}, 0.05);
@@ -133,7 +138,7 @@ TEST(PaperStudyTest, DepthChangesLittleAndMoreDefectiveRollersShakeMore) {
   const PaperRun one = RunScene("rollers-1", {}, 0.08);
   const PaperRun three = RunScene("rollers-3", {}, 0.08);
   EXPECT_GT(three.accel_rms, 1.5 * one.accel_rms);
-  EXPECT_GT(three.slip_rms, 1.5 * one.slip_rms);
+  EXPECT_GT(three.slip_rms, 1.2 * one.slip_rms);
   EXPECT_GT(three.cage_force_rms, 1.5 * one.cage_force_rms);
 }
 
@@ -174,10 +179,14 @@ TEST(PaperStudyTest, EhlTractionRollsThroughLengthSpallsAndWiderSpallsShakeMore)
 // load, so the spall's rims reach the races up to about 0.9 / 1.0 mm (inner / outer) and no
 // longer at 1.38 mm. The roller rolls throughout, and the 1.38 mm spall shakes the bearing less
 // than the 0.92 mm one (eight starts of 0.3 s: 777 +- 38 against 1109 +- 23 m/s^2), where the
-// through-length spall's rims would strike harder.
+// through-length spall's rims would strike harder. Measured from 30 ms, past the first cage turn
+// (24 ms) after the ramp: the spall starts facing the outer race, and whether the roller's start
+// there holds it before its first load-zone passage depends on the cage's radial play (with
+// 0.1 mm it rolls 71 % of 10-50 ms, 100 % from 30 ms; docs/BEARING_MODEL.md, "Cage"). Measured:
+// x0.62 (x0.71 with 0.1 mm).
 TEST(PaperStudyTest, WiderThanTheIntactPartCarriesTheRimsNoLongerStrike) {
-  const PaperRun narrow = RunScene("width-0.92", {"defects.0.length_mm=7"}, 0.05);
-  const PaperRun wide = RunScene("width-1.38", {"defects.0.length_mm=7"}, 0.05);
+  const PaperRun narrow = RunScene("width-0.92", {"defects.0.length_mm=7"}, 0.07, 0.03);
+  const PaperRun wide = RunScene("width-1.38", {"defects.0.length_mm=7"}, 0.07, 0.03);
   std::printf("7 mm spall: accel RMS %.1f (0.92 mm) / %.1f (1.38 mm) m/s^2 (x%.2f)\n",
               narrow.accel_rms,
               wide.accel_rms,
