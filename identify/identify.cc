@@ -405,8 +405,12 @@ Identification Identify(const Record& record,
 
   // Squared envelope in the diagnosis band, alias-free up to the sidebands' highest line.
   dsp::EnvelopeAnalyzer analyzer(record.samples, fs);
-  const double needed = 1.2 * (options.sideband_harmonics * SidebandSpinStep(options) * 0.5 * f_b0 +
-                               (options.sideband_orders + 1) * f_c0);
+  const double needed = 1.2 * (SidebandsHighestLineHz(0.5 * f_b0,
+                                                      f_c0,
+                                                      options.sideband_harmonics,
+                                                      options.sideband_orders,
+                                                      SidebandSpinStep(options)) +
+                               f_c0);
   double rate = 0.0;
   const std::vector<double> se =
       analyzer.SquaredEnvelope(diagnosis.band, std::max(diagnosis.band.width_hz(), needed), &rate);

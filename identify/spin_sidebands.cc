@@ -28,7 +28,9 @@ SpinSidebands MeasureSpinSidebands(std::span<const double> se,
   out.orders = orders;
   const double nyquist = 0.5 * rate_hz;
   out.harmonics = harmonics;
-  while (out.harmonics > 0 && out.FrequencyHz(out.harmonics, orders) >= 0.95 * nyquist)
+  while (out.harmonics > 0 &&
+         SidebandsHighestLineHz(spin_hz, cage_hz, out.harmonics, orders, spin_step) >=
+             0.95 * nyquist)
     --out.harmonics;
   if (out.harmonics == 0) return out;
 

@@ -38,6 +38,13 @@ struct SpinSidebands {
   double FrequencyHz(int j, int m) const { return j * spin_hz + m * cage_hz; }
 };
 
+// The highest line MeasureSpinSidebands measures (j = harmonics, m = orders), Hz: a squared
+// envelope must hold it alias-free for all of them to be measured.
+inline double SidebandsHighestLineHz(
+    double spin_hz, double cage_hz, int harmonics, int orders, int spin_step = 1) {
+  return harmonics * spin_step * spin_hz + orders * cage_hz;
+}
+
 // Lines of se (sampled at rate_hz, first sample at t = 0) at j (spin_step spin_hz) + m cage_hz:
 // spin_step 2 takes the harmonics of f_b = 2 f_s (the result's spin_hz is then f_b). Every spin
 // harmonic's comb is kept out of the floors. Lines above the Nyquist rate of se are left out
