@@ -26,6 +26,8 @@ struct IdentifyStatementOptions {
   int sideband_spin_step = identify::IdentifyOptions().sideband_spin_step;
   CLI::Option* spin_step_option = nullptr;
   bool width_needs_count = false;
+  double max_pair_power_ratio = identify::IdentifyOptions().max_pair_power_ratio;
+  CLI::Option* pair_ratio_option = nullptr;
   bool count_without_cage_hump = false;
   bool count_with_extreme_hump = false;
   bool combine_per_count = false;
@@ -64,6 +66,11 @@ struct IdentifyStatementOptions {
                  width_needs_count,
                  "state the width only with a stated count (by default also when every likely "
                  "count's configuration gives the same entry-exit pair: docs/IDENTIFY.md)");
+    pair_ratio_option = sub.add_option(
+        "--max-pair-power-ratio",
+        max_pair_power_ratio,
+        "state no width whose second event correlates above this fraction of the zero-lag power "
+        "(default: no such bound; 1 reproduces the measured alternative, docs/IDENTIFY.md)");
     sub.add_flag("--combine-per-count",
                  combine_per_count,
                  "combine the count's two features per K, as the temperatures were chosen "
@@ -109,6 +116,10 @@ struct IdentifyStatementOptions {
     if (spin_step_option && spin_step_option->count() > 0)
       apply("--sideband-spin-step", std::to_string(sideband_spin_step), [&](auto* t) {
         t->sideband_spin_step = sideband_spin_step;
+      });
+    if (pair_ratio_option && pair_ratio_option->count() > 0)
+      apply("--max-pair-power-ratio", Number(max_pair_power_ratio), [&](auto* t) {
+        t->max_pair_power_ratio = max_pair_power_ratio;
       });
     if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
     if (width_needs_count) o->width_over_uncertain_count = false;

@@ -173,9 +173,10 @@ std::string WidthForCount(int k,
              ratio < options.min_pair_power_ratio || ratio > options.max_pair_power_ratio) {
     why = "width: not identifiable (the second event at " +
           FormatNumber("%.2f", wf.best.delay_s * 1e3) + " ms correlates at " +
-          FormatNumber("%.2f", ratio) + " of the zero-lag power, outside " +
-          FormatNumber("%.2f", options.min_pair_power_ratio) + "-" +
-          FormatNumber("%.2f", options.max_pair_power_ratio) +
+          FormatNumber("%.2f", ratio) + " of the zero-lag power, " +
+          (ratio < options.min_pair_power_ratio
+               ? "below " + FormatNumber("%.2f", options.min_pair_power_ratio)
+               : "above " + FormatNumber("%.2f", options.max_pair_power_ratio)) +
           ": not a release and landing of one roller)";
   } else if (wf.delay_high_s < dt_res) {
     why = "width: below what the record resolves (< " +
@@ -742,6 +743,9 @@ std::string Identification::ToJson(int indent) const {
                               {"sidebands", options.count.temperature_sidebands}};
   settings["sideband_pattern_per_parity"] = options.count.sideband_pattern_per_parity;
   settings["sideband_spin_step"] = SidebandSpinStep(options);
+  settings["max_pair_power_ratio"] = std::isfinite(options.max_pair_power_ratio)
+                                         ? ordered_json(options.max_pair_power_ratio)
+                                         : ordered_json(nullptr);  // null: no upper bound
   j["settings"] = settings;
   return j.dump(indent);
 }

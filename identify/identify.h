@@ -22,6 +22,7 @@
 //     std::cout << id.BriefReport();   // or id.ToJson()
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -151,11 +152,15 @@ struct IdentifyOptions {
   // the same strength, A ~ B. Two events correlate at their delay with AB <= (A^2 + B^2) / 2, half
   // the zero-lag power (noise included). A "second event" below min_pair_power_ratio of the
   // zero-lag power (B < A / 10) is not that pair (on the simulator's narrow spalls, which are
-  // never released: a beat of two housing modes); one above max_pair_power_ratio (twice the
-  // bound: the fit splits the zero-lag peak between the events' shape and the noise's) is not an
-  // event pair at all. SignalModelOptions(): no lower bound (its entry is a weak unloading).
+  // never released: a beat of two housing modes). No upper bound by default: the ratio's
+  // denominator adds the noise peak's height to the events' zero-lag power, and where the
+  // noise's correlation time is as long as an event's rise the fit moves part of the zero-lag
+  // peak into it, so a true pair can read above 1 (seen up to 3.7 on the simulated sets, its
+  // delay right); max_pair_power_ratio 1, measured and not kept, refused 24 widths within 15 %
+  // and 2 wrong ones (docs/IDENTIFY.md, "Width"). SignalModelOptions(): no lower bound (its
+  // entry is a weak unloading).
   double min_pair_power_ratio = 0.1;
-  double max_pair_power_ratio = 1.0;
+  double max_pair_power_ratio = std::numeric_limits<double>::infinity();
   double max_width_relative_half_interval = 0.3;
   // With several defective rollers, one roller's impacts correlate with another's at the lag of
   // their spin phases (feature B's fit). A delay within this of such a lag may be that

@@ -86,7 +86,9 @@ struct EntryExitFit {
   std::vector<double> model;
 
   // The second event's correlation over the zero-lag power (noise included): at most 1/2 for two
-  // events, about 1/2 for two of like strength.
+  // events, about 1/2 for two of like strength, while the noise term is narrower than an event.
+  // noise_power is a height, the others areas: where the noise term is as wide as an event the
+  // fit can move zero-lag power into it and the ratio of a true pair passes 1.
   double PairPowerRatio() const {
     return delay_power / std::max(1e-300, zero_lag_power + noise_power);
   }

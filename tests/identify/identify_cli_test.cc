@@ -89,8 +89,8 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
 // The sideband feature's model with one pattern per parity (not the default) and its harmonics
 // (--sideband-spin-step) are chosen on the command line and said in the settings; the sample
 // record is one roller either way. Each
-// statement rule's switch (width rule, cage hump, hump shape, per-count combination) is said in
-// the settings too.
+// statement rule's switch (width rule, cage hump, hump shape, per-count combination, the pair's
+// power-ratio bound) is said in the settings too.
 TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
   const auto r = RunSpall("identify " + kSample +
                           " --bearing N205EM --rpm 1200 --json --sideband-pattern-per-parity");
@@ -112,6 +112,11 @@ TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
   EXPECT_EQ(nlohmann::json::parse(every.out)["defective_rollers"]["count"], 1);
   EXPECT_TRUE(
       nlohmann::json::parse(base.out)["settings"]["width_over_uncertain_count"].get<bool>());
+  EXPECT_TRUE(nlohmann::json::parse(base.out)["settings"]["max_pair_power_ratio"].is_null());
+  const auto bounded = RunSpall("identify " + kSample +
+                                " --bearing N205EM --rpm 1200 --json --max-pair-power-ratio 1");
+  ASSERT_EQ(bounded.code, 0) << bounded.err;
+  EXPECT_EQ(nlohmann::json::parse(bounded.out)["settings"]["max_pair_power_ratio"], 1.0);
   const auto strict =
       RunSpall("identify " + kSample + " --bearing N205EM --rpm 1200 --json --width-needs-count");
   ASSERT_EQ(strict.code, 0) << strict.err;

@@ -15,9 +15,10 @@ namespace spallkit::identify {
 namespace {
 
 // A squared envelope of passages at random times (like impacts at f_b with slip), each an entry
-// (power 0.12) and dt later an exit (power 1), EMG-shaped, on exponential noise (the squared
-// envelope of Gaussian noise) of mean `noise`.
-std::vector<double> PairedEvents(double dt, double noise, unsigned seed, double rate = 20000.0) {
+// (power `entry`, 0.12 unless given) and dt later an exit (power 1), EMG-shaped, on exponential
+// noise (the squared envelope of Gaussian noise) of mean `noise`.
+std::vector<double> PairedEvents(
+    double dt, double noise, unsigned seed, double rate = 20000.0, double entry = 0.12) {
   std::mt19937_64 rng(seed);
   std::exponential_distribution<double> expo(1.0);
   std::uniform_real_distribution<double> jitter(-0.3, 0.3);
@@ -28,7 +29,7 @@ std::vector<double> PairedEvents(double dt, double noise, unsigned seed, double 
     for (int i = 0; i < n; ++i) {
       const double tau = i / rate - t;
       if (tau < -dt - 0.002 || tau > 0.004) continue;
-      se[i] += EventShape(tau, 0.1e-3, 0.4e-3) + 0.12 * EventShape(tau + dt, 0.1e-3, 0.4e-3);
+      se[i] += EventShape(tau, 0.1e-3, 0.4e-3) + entry * EventShape(tau + dt, 0.1e-3, 0.4e-3);
     }
   }
   return se;
@@ -168,6 +169,27 @@ TEST(WidthFit, OptionsAreChecked) {
   std::string e;
   EXPECT_FALSE(o.IsValid(&e));
   EXPECT_NE(e.find("max_delay_s"), std::string::npos);
+}
+
+// Two events of like strength correlate at their delay with at most half the zero-lag power,
+// but the pair's power ratio (IdentifyOptions::max_pair_power_ratio) is P_1 / (P_0 + P_n):
+// where the noise's correlation time is as long as an event's rise, the fit gives part of the
+// zero-lag peak to the noise's Gaussian, whose P_n is a height, not an area like P_0 and P_1,
+// and the ratio of a true pair passes 1 with its delay still right.
+TEST(WidthFit, AZeroLagPeakSplitWithTheNoiseLiftsATruePairsRatioAboveOne) {
+  const double dt = 0.8e-3;
+  const auto se = PairedEvents(dt, 0.02, 11, 20000.0, 1.0);
+  WidthFitOptions o;
+  o.bootstrap = 60;
+  const WidthFit white = FitEntryExit(se, 20000.0, {}, 2500, o);
+  o.noise_correlation_s = 0.3e-3;
+  const WidthFit split = FitEntryExit(se, 20000.0, {}, 2500, o);
+  ASSERT_TRUE(white.usable && split.usable);
+  EXPECT_NEAR(white.best.PairPowerRatio(), 0.5, 0.05);
+  EXPECT_GT(split.best.PairPowerRatio(), 1.0);
+  EXPECT_LT(split.best.zero_lag_power, 0.5 * white.best.zero_lag_power);
+  EXPECT_NEAR(split.best.delay_s, dt, 0.05 * dt);
+  EXPECT_GT(split.delay_power_significance, 2.0);
 }
 
 }  // namespace
