@@ -26,6 +26,7 @@ struct IdentifyStatementOptions {
   int sideband_spin_step = identify::IdentifyOptions().sideband_spin_step;
   CLI::Option* spin_step_option = nullptr;
   bool width_needs_count = false;
+  bool width_shared_ring_down = false;
   double max_pair_power_ratio = identify::IdentifyOptions().max_pair_power_ratio;
   CLI::Option* pair_ratio_option = nullptr;
   bool count_without_cage_hump = false;
@@ -71,6 +72,10 @@ struct IdentifyStatementOptions {
         max_pair_power_ratio,
         "state no width whose second event correlates above this fraction of the zero-lag power "
         "(default: no such bound; 1 reproduces the measured alternative, docs/IDENTIFY.md)");
+    sub.add_flag("--width-shared-ring-down",
+                 width_shared_ring_down,
+                 "the width fit's pair peak with the zero-lag peak's ring-down instead of its own "
+                 "(measured, not the default: docs/IDENTIFY.md)");
     sub.add_flag("--combine-per-count",
                  combine_per_count,
                  "combine the count's two features per K, as the temperatures were chosen "
@@ -123,6 +128,7 @@ struct IdentifyStatementOptions {
       });
     if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
     if (width_needs_count) o->width_over_uncertain_count = false;
+    if (width_shared_ring_down) o->width.shared_ring_down = true;
     if (count_without_cage_hump) o->count_needs_cage_hump = false;
     if (count_with_extreme_hump) {
       o->min_count_hump_exponent = 0.0;

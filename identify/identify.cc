@@ -357,6 +357,7 @@ IdentifyOptions SignalModelOptions() {
   o.width_max_count = 1 << 20;
   o.width_max_diameter_fraction = 0.8;
   o.sideband_spin_step = 1;
+  o.width.shared_ring_down = true;  // both events ring the same resonances
   return o;
 }
 
@@ -704,7 +705,11 @@ std::string Identification::ToJson(int indent) const {
           {"rise_ms", width_fit.best.rise_s * 1e3},
           {"delay_rise_ms", width_fit.best.delay_rise_s * 1e3},
           {"from_exclusive_zone", width_from_exclusive_zone},
-          {"decay_ms", width_fit.best.decay_s * 1e3}};
+          {"decay_ms", width_fit.best.decay_s * 1e3},
+          {"delay_decay_ms",
+           (width_fit.best.delay_decay_s > 0 ? width_fit.best.delay_decay_s
+                                             : width_fit.best.decay_s) *
+               1e3}};
       std::vector<double> lags_ms;
       for (double lag : other_rollers_lags_s) lags_ms.push_back(lag * 1e3);
       fit["delay_ms"]["other_rollers_lags"] = lags_ms;
@@ -743,6 +748,7 @@ std::string Identification::ToJson(int indent) const {
                               {"sidebands", options.count.temperature_sidebands}};
   settings["sideband_pattern_per_parity"] = options.count.sideband_pattern_per_parity;
   settings["sideband_spin_step"] = SidebandSpinStep(options);
+  settings["width_shared_ring_down"] = options.width.shared_ring_down;
   settings["max_pair_power_ratio"] = std::isfinite(options.max_pair_power_ratio)
                                          ? ordered_json(options.max_pair_power_ratio)
                                          : ordered_json(nullptr);  // null: no upper bound

@@ -152,13 +152,13 @@ struct IdentifyOptions {
   // the same strength, A ~ B. Two events correlate at their delay with AB <= (A^2 + B^2) / 2, half
   // the zero-lag power (noise included). A "second event" below min_pair_power_ratio of the
   // zero-lag power (B < A / 10) is not that pair (on the simulator's narrow spalls, which are
-  // never released: a beat of two housing modes). No upper bound by default: the ratio's
-  // denominator adds the noise peak's height to the events' zero-lag power, and where the
-  // noise's correlation time is as long as an event's rise the fit moves part of the zero-lag
-  // peak into it, so a true pair can read above 1 (seen up to 3.7 on the simulated sets, its
-  // delay right); max_pair_power_ratio 1, measured and not kept, refused 24 widths within 15 %
-  // and 2 wrong ones (docs/IDENTIFY.md, "Width"). SignalModelOptions(): no lower bound (its
-  // entry is a weak unloading).
+  // never released: a beat of two housing modes). No upper bound by default:
+  // the ratio's denominator adds the noise peak's height to the events' zero-lag area, and where
+  // the noise's correlation time is as long as an event's rise the fit moves part of the
+  // zero-lag peak into it, so a true pair can read above 1 (48 of the tuning side's 131 widths,
+  // up to 4.6, all within 15 %); max_pair_power_ratio 1, measured and not kept, states 51 fewer
+  // widths within 15 % there and no fewer wrong ones (docs/IDENTIFY.md, "Width").
+  // SignalModelOptions(): no lower bound (its entry is a weak unloading).
   double min_pair_power_ratio = 0.1;
   double max_pair_power_ratio = std::numeric_limits<double>::infinity();
   double max_width_relative_half_interval = 0.3;
@@ -201,7 +201,9 @@ struct IdentifyOptions {
 // 0.1 of the strongest counted (no unmodelled impacts outside the load zone), the geometric
 // width relation (events at the spall's edges, no scatter), and feature B on every spin harmonic
 // (sideband_spin_step 1: there the outer- and inner-race events share one cage-angle pattern, so
-// the odd harmonics fit the one-pattern model too and add their lines).
+// the odd harmonics fit the one-pattern model too and add their lines), and the width fit's pair
+// peak with the zero-lag peak's ring-down (WidthFitOptions::shared_ring_down: both events ring
+// the same resonances there).
 IdentifyOptions SignalModelOptions();
 
 struct Identification {

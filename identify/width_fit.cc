@@ -34,6 +34,20 @@ double NoisePeak(double tau, double width) {
   return std::exp(-0.5 * u * u);
 }
 
+// The second event's ring-down: its own, or tau_d (WidthFitOptions::shared_ring_down).
+double DelayDecay(const EntryExitFit& f) {
+  return f.delay_decay_s > 0 ? f.delay_decay_s : f.decay_s;
+}
+
+// tau_d1 / tau_d, in [kMinRingDownRatio, 1]: each side of the pair peak decays with one of the
+// two events' ring-downs, the zero-lag peak with the slowest event's, so tau_d1 <= tau_d. Without
+// that bound the pair peak takes the zero-lag peak's tail (a long tau_d1 just after a sharp
+// zero-lag peak: a delay read short).
+constexpr double kMinRingDownRatio = 0.01;
+double RingDownRatio(const EntryExitFit& f) {
+  return std::clamp(DelayDecay(f) / f.decay_s, kMinRingDownRatio, 1.0);
+}
+
 template <typename T>
 T Symmetric(const T& tau, const T& rise, const T& decay) {
   return T(0.5) * (Emg(tau, rise, decay) + Emg(-tau, rise, decay));
@@ -43,13 +57,18 @@ struct CorrelationResidual {
   const EnvelopeCorrelation* r;
   int lags;
   double noise_s;
+  bool shared_ring_down;
   template <typename T>
   bool operator()(const T* lin, const T* delay, const T* shape, T* residuals) const {
-    // lin = {c, P_0, P_1, P_noise}, delay = {dt}, shape = {sigma_0, tau_d, sigma_1 - sigma_0}
+    // lin = {c, P_0, P_1, P_noise}, delay = {dt},
+    // shape = {sigma_0, tau_d, sigma_1 - sigma_0, tau_d1 / tau_d} (the last unused with a shared
+    // ring-down)
     for (int i = 0; i < lags; ++i) {
       const T tau(r->TauSeconds(i));
       const T m = lin[0] + lin[1] * Symmetric(tau, shape[0], shape[1]) +
-                  lin[2] * Symmetric(tau - delay[0], shape[0] + shape[2], shape[1]) +
+                  lin[2] * Symmetric(tau - delay[0],
+                                     shape[0] + shape[2],
+                                     shared_ring_down ? shape[1] : shape[1] * shape[3]) +
                   lin[3] * NoisePeak(r->TauSeconds(i), noise_s);
       residuals[i] = (T(r->mean[i]) - m) / r->sigma[i];
     }
@@ -62,7 +81,7 @@ std::vector<double> ModelOf(const EnvelopeCorrelation& r, int lags, const EntryE
   for (int i = 0; i < lags; ++i) {
     const double tau = r.TauSeconds(i);
     m[i] = f.offset + f.zero_lag_power * SymmetricEventShape(tau, f.rise_s, f.decay_s) +
-           f.delay_power * SymmetricEventShape(tau - f.delay_s, f.delay_rise_s, f.decay_s) +
+           f.delay_power * SymmetricEventShape(tau - f.delay_s, f.delay_rise_s, DelayDecay(f)) +
            f.noise_power * NoisePeak(tau, f.noise_correlation_s);
   }
   return m;
@@ -81,7 +100,7 @@ bool LinearPart(const EnvelopeCorrelation& r, int lags, EntryExitFit* f) {
     const double tau = r.TauSeconds(i);
     const double row[kN] = {1.0,
                             SymmetricEventShape(tau, f->rise_s, f->decay_s),
-                            SymmetricEventShape(tau - f->delay_s, f->delay_rise_s, f->decay_s),
+                            SymmetricEventShape(tau - f->delay_s, f->delay_rise_s, DelayDecay(*f)),
                             NoisePeak(tau, f->noise_correlation_s)};
     const double w = 1.0 / (r.sigma[i] * r.sigma[i]);
     for (int p = 0; p < kN; ++p) {
@@ -116,6 +135,7 @@ bool LinearPart(const EnvelopeCorrelation& r, int lags, EntryExitFit* f) {
 
 struct Bounds {
   double min_delay, max_delay, min_rise, max_rise, min_decay, max_decay, noise_correlation;
+  bool shared_ring_down;  // WidthFitOptions::shared_ring_down
 };
 
 // The correlation model as a Ceres problem on (lin, delay, shape) = ((c, P_0, P_1, P_noise),
@@ -129,8 +149,8 @@ void AddCorrelationModel(const EnvelopeCorrelation& r,
                          double* delay,
                          double* shape,
                          ceres::Problem* problem) {
-  auto* cost = new ceres::AutoDiffCostFunction<CorrelationResidual, ceres::DYNAMIC, 4, 1, 3>(
-      new CorrelationResidual{&r, lags, noise_correlation_s}, lags);
+  auto* cost = new ceres::AutoDiffCostFunction<CorrelationResidual, ceres::DYNAMIC, 4, 1, 4>(
+      new CorrelationResidual{&r, lags, noise_correlation_s, bd.shared_ring_down}, lags);
   problem->AddResidualBlock(cost, nullptr, lin, delay, shape);
   problem->SetParameterLowerBound(lin, 1, 0.0);
   problem->SetParameterLowerBound(lin, 3, 0.0);
@@ -140,6 +160,9 @@ void AddCorrelationModel(const EnvelopeCorrelation& r,
   problem->SetParameterUpperBound(shape, 1, bd.max_decay);
   problem->SetParameterLowerBound(shape, 2, 0.0);
   problem->SetParameterUpperBound(shape, 2, bd.max_rise);
+  problem->SetParameterLowerBound(shape, 3, kMinRingDownRatio);
+  problem->SetParameterUpperBound(shape, 3, 1.0);
+  if (bd.shared_ring_down) problem->SetManifold(shape, new ceres::SubsetManifold(4, {3}));
 }
 
 ceres::Solver::Summary SolveQuietly(int max_iterations, ceres::Problem* problem) {
@@ -167,21 +190,26 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
     best.model = ModelOf(r, lags, best);
     best.chi2 = Chi2Of(r, best.model);
   } else {
+    // The pair peak's ring-down as a fraction of the zero-lag peak's (RingDownRatio).
+    const std::vector<double> ring_down_ratios =
+        bd.shared_ring_down ? std::vector<double>{0.0} : std::vector<double>{1.0, 0.5, 0.25};
     for (double rise : {0.05e-3, 0.15e-3, 0.4e-3})
       for (double decay : {0.15e-3, 0.4e-3, 1.0e-3})
         for (double extra : {0.0, 0.1e-3})
-          for (int g = 0; g < grid; ++g) {
-            EntryExitFit f;
-            f.noise_correlation_s = bd.noise_correlation;
-            f.rise_s = std::clamp(rise, bd.min_rise, bd.max_rise);
-            f.delay_rise_s = std::min(f.rise_s + extra, bd.max_rise + f.rise_s);
-            f.decay_s = std::clamp(decay, bd.min_decay, bd.max_decay);
-            f.delay_s = bd.min_delay + (bd.max_delay - bd.min_delay) * g / std::max(1, grid - 1);
-            if (!LinearPart(r, lags, &f)) continue;
-            f.model = ModelOf(r, lags, f);
-            f.chi2 = Chi2Of(r, f.model);
-            if (f.chi2 < best.chi2) best = f;
-          }
+          for (double ring_down_ratio : ring_down_ratios)
+            for (int g = 0; g < grid; ++g) {
+              EntryExitFit f;
+              f.noise_correlation_s = bd.noise_correlation;
+              f.rise_s = std::clamp(rise, bd.min_rise, bd.max_rise);
+              f.delay_rise_s = std::min(f.rise_s + extra, bd.max_rise + f.rise_s);
+              f.decay_s = std::clamp(decay, bd.min_decay, bd.max_decay);
+              f.delay_decay_s = ring_down_ratio > 0 ? ring_down_ratio * f.decay_s : 0.0;
+              f.delay_s = bd.min_delay + (bd.max_delay - bd.min_delay) * g / std::max(1, grid - 1);
+              if (!LinearPart(r, lags, &f)) continue;
+              f.model = ModelOf(r, lags, f);
+              f.chi2 = Chi2Of(r, f.model);
+              if (f.chi2 < best.chi2) best = f;
+            }
     if (!std::isfinite(best.chi2)) {
       best = EntryExitFit{};
       best.noise_correlation_s = bd.noise_correlation;
@@ -194,7 +222,10 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
   }
   double lin[4] = {best.offset, best.zero_lag_power, best.delay_power, best.noise_power};
   double delay[1] = {best.delay_s};
-  double shape[3] = {best.rise_s, best.decay_s, std::max(0.0, best.delay_rise_s - best.rise_s)};
+  double shape[4] = {best.rise_s,
+                     best.decay_s,
+                     std::max(0.0, best.delay_rise_s - best.rise_s),
+                     RingDownRatio(best)};
   ceres::Problem problem;
   AddCorrelationModel(r, lags, bd, best.noise_correlation_s, lin, delay, shape, &problem);
   problem.SetParameterLowerBound(lin, 2, 0.0);
@@ -211,6 +242,7 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
   f.rise_s = shape[0];
   f.decay_s = shape[1];
   f.delay_rise_s = shape[0] + shape[2];
+  f.delay_decay_s = bd.shared_ring_down ? 0.0 : shape[1] * shape[3];
   f.model = ModelOf(r, lags, f);
   f.chi2 = Chi2Of(r, f.model);
   const bool improved = f.chi2 <= best.chi2;
@@ -236,7 +268,10 @@ double NullChi2(const EnvelopeCorrelation& r,
                 const EntryExitFit& best) {
   double lin[4] = {best.offset, best.zero_lag_power, 0.0, best.noise_power};
   double delay[1] = {best.delay_s};
-  double shape[3] = {best.rise_s, best.decay_s, std::max(0.0, best.delay_rise_s - best.rise_s)};
+  double shape[4] = {best.rise_s,
+                     best.decay_s,
+                     std::max(0.0, best.delay_rise_s - best.rise_s),
+                     RingDownRatio(best)};
   ceres::Problem problem;
   AddCorrelationModel(r, lags, bd, best.noise_correlation_s, lin, delay, shape, &problem);
   problem.SetManifold(lin, new ceres::SubsetManifold(4, {2}));
@@ -359,6 +394,7 @@ Bounds BoundsOf(const WidthFitOptions& o, double rate_hz) {
   bd.min_decay = 0.5 / rate_hz;
   bd.max_decay = 3.0e-3;
   bd.noise_correlation = std::max(o.noise_correlation_s, 0.5 / rate_hz);
+  bd.shared_ring_down = o.shared_ring_down;
   return bd;
 }
 

@@ -17,10 +17,11 @@
 // intervals that miss the truth).
 //
 // Model for tau in [0, max_delay + tail]:
-//     R(tau) = c + P_0 S(tau; sigma_0, tau_d) + P_1 S(tau - dt; sigma_1, tau_d) + P_n N(tau)
+//     R(tau) = c + P_0 S(tau; sigma_0, tau_d) + P_1 S(tau - dt; sigma_1, tau_d1) + P_n N(tau)
 // S the symmetric exponentially modified Gaussian, [E(tau) + E(-tau)] / 2 (E the EMG with rise
 // sigma and ring-down tau_d: an event's squared envelope correlated with itself), sigma_1 >=
-// sigma_0 (the delay jitters between passages); N a Gaussian of the noise's correlation time
+// sigma_0 (the delay jitters between passages), tau_d1 the pair peak's own ring-down (tau_d with
+// WidthFitOptions::shared_ring_down); N a Gaussian of the noise's correlation time
 // (about 1 / band width: the noise correlates only with itself near tau = 0). (c, P_0, P_1, P_n)
 // are linear; dt is searched on a grid
 // from min_delay_s to max_delay_s with a few shapes, then every parameter is refined with Ceres.
@@ -49,6 +50,12 @@ struct WidthFitOptions {
   // Correlation time of the band's noise (about 1 / band width; the Gaussian peak P_n at tau = 0
   // takes it); 0: one sample (white).
   double noise_correlation_s = 0.0;
+  // The two peaks' ring-downs: each its own (the default: the zero-lag peak holds every strike
+  // of a passage and the noise, the delayed one only release and landing paired, and a shared
+  // tau_d, set by the narrow zero-lag peak, misfits a broader pair peak so that the best fit over
+  // every delay can take a faint far lag instead, docs/IDENTIFY.md, "Width"), or one tau_d for
+  // both (true: the earlier model, for comparisons).
+  bool shared_ring_down = false;
   unsigned seed = 1;
 
   bool IsValid(std::string* error) const;
@@ -82,6 +89,7 @@ struct EntryExitFit {
   double rise_s = 0.0;               // sigma_0
   double delay_rise_s = 0.0;         // sigma_1
   double decay_s = 0.0;              // tau_d
+  double delay_decay_s = 0.0;        // tau_d1, the second event's ring-down (0: tau_d's)
   double chi2 = 0.0;
   std::vector<double> model;
 

@@ -90,7 +90,7 @@ TEST(IdentifyCli, MinCountProbabilityRefusesALessProbableCount) {
 // (--sideband-spin-step) are chosen on the command line and said in the settings; the sample
 // record is one roller either way. Each
 // statement rule's switch (width rule, cage hump, hump shape, per-count combination, the pair's
-// power-ratio bound) is said in the settings too.
+// power-ratio bound, the width fit's ring-downs) is said in the settings too.
 TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
   const auto r = RunSpall("identify " + kSample +
                           " --bearing N205EM --rpm 1200 --json --sideband-pattern-per-parity");
@@ -113,6 +113,11 @@ TEST(IdentifyCli, SidebandPatternAndStatementRulesAreSettings) {
   EXPECT_TRUE(
       nlohmann::json::parse(base.out)["settings"]["width_over_uncertain_count"].get<bool>());
   EXPECT_TRUE(nlohmann::json::parse(base.out)["settings"]["max_pair_power_ratio"].is_null());
+  EXPECT_FALSE(nlohmann::json::parse(base.out)["settings"]["width_shared_ring_down"].get<bool>());
+  const auto shared = RunSpall("identify " + kSample +
+                               " --bearing N205EM --rpm 1200 --json --width-shared-ring-down");
+  ASSERT_EQ(shared.code, 0) << shared.err;
+  EXPECT_TRUE(nlohmann::json::parse(shared.out)["settings"]["width_shared_ring_down"].get<bool>());
   const auto bounded = RunSpall("identify " + kSample +
                                 " --bearing N205EM --rpm 1200 --json --max-pair-power-ratio 1");
   ASSERT_EQ(bounded.code, 0) << bounded.err;
