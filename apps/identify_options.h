@@ -27,6 +27,8 @@ struct IdentifyStatementOptions {
   CLI::Option* spin_step_option = nullptr;
   bool width_needs_count = false;
   bool width_shared_ring_down = false;
+  double width_load_fraction = identify::IdentifyOptions().width_contact_load_fraction;
+  CLI::Option* load_fraction_option = nullptr;
   double max_pair_power_ratio = identify::IdentifyOptions().max_pair_power_ratio;
   CLI::Option* pair_ratio_option = nullptr;
   bool count_without_cage_hump = false;
@@ -72,6 +74,11 @@ struct IdentifyStatementOptions {
         max_pair_power_ratio,
         "state no width whose second event correlates above this fraction of the zero-lag power "
         "(default: no such bound; 1 reproduces the measured alternative, docs/IDENTIFY.md)");
+    load_fraction_option = sub.add_option(
+        "--width-load-fraction",
+        width_load_fraction,
+        "the width relation's passage load as a fraction of the load-line roller load (default " +
+            Number(width_load_fraction) + ", the calibration: docs/IDENTIFY.md)");
     sub.add_flag("--width-shared-ring-down",
                  width_shared_ring_down,
                  "the width fit's pair peak with the zero-lag peak's ring-down instead of its own "
@@ -125,6 +132,10 @@ struct IdentifyStatementOptions {
     if (pair_ratio_option && pair_ratio_option->count() > 0)
       apply("--max-pair-power-ratio", Number(max_pair_power_ratio), [&](auto* t) {
         t->max_pair_power_ratio = max_pair_power_ratio;
+      });
+    if (load_fraction_option && load_fraction_option->count() > 0)
+      apply("--width-load-fraction", Number(width_load_fraction), [&](auto* t) {
+        t->width_contact_load_fraction = width_load_fraction;
       });
     if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
     if (width_needs_count) o->width_over_uncertain_count = false;

@@ -110,7 +110,7 @@ struct IdentifyOptions {
   // apart, v the roller's surface speed. width_contact_release takes that into account (needs
   // the radial load). Q = width_contact_load_fraction x the load-line roller load (Harris-Jones):
   // 0.7, the fraction (grid 0.5-1 by 0.1) whose widths have the smallest mean error on the
-  // calibration set (datasets/sweeps/identify-width.toml, clean, 10 and 0 dB: -1.0 %), about the
+  // calibration set (datasets/sweeps/identify-width.toml, clean, 10 and 0 dB: -1.1 %), about the
   // load at +/- 40 deg where the simulated impacts are strongest (docs/IDENTIFY.md, "Width").
   // Records of the synthetic signal model (identify/synthetic_record.h) place their two events
   // at the spall's edges: no release term there.
@@ -119,7 +119,8 @@ struct IdentifyOptions {
   // A remaining linear calibration of the delay, dt = scale dt_model + offset, and the relation's
   // relative scatter in width (one standard deviation between records), which widens the 90 %
   // interval: 0.065, the standard deviation of the calibration set's width errors (19 widths
-  // stated at the three SNRs: 6.4 %).
+  // stated at the three SNRs with one ring-down for both correlation peaks: 6.4 %; 28 with the
+  // default's own pair ring-down: 5.3 %, the wider value kept).
   double width_calibration_scale = 1.0;
   double width_calibration_offset_s = 0.0;
   double width_calibration_relative_sd = 0.065;
