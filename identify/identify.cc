@@ -706,10 +706,7 @@ std::string Identification::ToJson(int indent) const {
           {"delay_rise_ms", width_fit.best.delay_rise_s * 1e3},
           {"from_exclusive_zone", width_from_exclusive_zone},
           {"decay_ms", width_fit.best.decay_s * 1e3},
-          {"delay_decay_ms",
-           (width_fit.best.delay_decay_s > 0 ? width_fit.best.delay_decay_s
-                                             : width_fit.best.decay_s) *
-               1e3}};
+          {"delay_decay_ms", width_fit.best.PairDecayS() * 1e3}};
       std::vector<double> lags_ms;
       for (double lag : other_rollers_lags_s) lags_ms.push_back(lag * 1e3);
       fit["delay_ms"]["other_rollers_lags"] = lags_ms;

@@ -34,18 +34,13 @@ double NoisePeak(double tau, double width) {
   return std::exp(-0.5 * u * u);
 }
 
-// The second event's ring-down: its own, or tau_d (WidthFitOptions::shared_ring_down).
-double DelayDecay(const EntryExitFit& f) {
-  return f.delay_decay_s > 0 ? f.delay_decay_s : f.decay_s;
-}
-
 // tau_d1 / tau_d, in [kMinRingDownRatio, 1]: each side of the pair peak decays with one of the
 // two events' ring-downs, the zero-lag peak with the slowest event's, so tau_d1 <= tau_d. Without
 // that bound the pair peak takes the zero-lag peak's tail (a long tau_d1 just after a sharp
 // zero-lag peak: a delay read short).
 constexpr double kMinRingDownRatio = 0.01;
 double RingDownRatio(const EntryExitFit& f) {
-  return std::clamp(DelayDecay(f) / f.decay_s, kMinRingDownRatio, 1.0);
+  return std::clamp(f.PairDecayS() / f.decay_s, kMinRingDownRatio, 1.0);
 }
 
 template <typename T>
@@ -76,14 +71,34 @@ struct CorrelationResidual {
   }
 };
 
+// The model's three shape columns at lag i: zero-lag peak, pair peak, noise peak.
+double ZeroLagColumn(const EnvelopeCorrelation& r, int i, const EntryExitFit& f) {
+  return SymmetricEventShape(r.TauSeconds(i), f.rise_s, f.decay_s);
+}
+double PairColumn(const EnvelopeCorrelation& r, int i, const EntryExitFit& f) {
+  return SymmetricEventShape(r.TauSeconds(i) - f.delay_s, f.delay_rise_s, f.PairDecayS());
+}
+double NoiseColumn(const EnvelopeCorrelation& r, int i, const EntryExitFit& f) {
+  return NoisePeak(r.TauSeconds(i), f.noise_correlation_s);
+}
+
+// The model from f's linear part and its three columns (lags values each).
+void ModelFromColumns(const EntryExitFit& f,
+                      const double* zero,
+                      const double* pair,
+                      const double* noise,
+                      std::vector<double>* m) {
+  for (size_t i = 0; i < m->size(); ++i)
+    (*m)[i] =
+        f.offset + f.zero_lag_power * zero[i] + f.delay_power * pair[i] + f.noise_power * noise[i];
+}
+
 std::vector<double> ModelOf(const EnvelopeCorrelation& r, int lags, const EntryExitFit& f) {
-  std::vector<double> m(lags);
-  for (int i = 0; i < lags; ++i) {
-    const double tau = r.TauSeconds(i);
-    m[i] = f.offset + f.zero_lag_power * SymmetricEventShape(tau, f.rise_s, f.decay_s) +
-           f.delay_power * SymmetricEventShape(tau - f.delay_s, f.delay_rise_s, DelayDecay(f)) +
-           f.noise_power * NoisePeak(tau, f.noise_correlation_s);
-  }
+  std::vector<double> zero(lags), pair(lags), noise(lags), m(lags);
+  for (int i = 0; i < lags; ++i)
+    zero[i] = ZeroLagColumn(r, i, f), pair[i] = PairColumn(r, i, f),
+    noise[i] = NoiseColumn(r, i, f);
+  ModelFromColumns(f, zero.data(), pair.data(), noise.data(), &m);
   return m;
 }
 
@@ -91,17 +106,18 @@ double Chi2Of(const EnvelopeCorrelation& r, const std::vector<double>& model) {
   return ChiSquare(r.mean, r.sigma, model);
 }
 
-// Weighted linear least squares for (c, P_0, P_1, P_noise) at fixed delay and shape; false if a
-// power is negative or the system singular.
-bool LinearPart(const EnvelopeCorrelation& r, int lags, EntryExitFit* f) {
+// Weighted linear least squares for (c, P_0, P_1, P_noise) given the three shape columns (lags
+// values each); false if a power is negative or the system singular.
+bool LinearPartOf(const EnvelopeCorrelation& r,
+                  int lags,
+                  const double* zero,
+                  const double* pair,
+                  const double* noise,
+                  EntryExitFit* f) {
   constexpr int kN = 4;
   double a[kN][kN] = {{0}}, x[kN] = {0};
   for (int i = 0; i < lags; ++i) {
-    const double tau = r.TauSeconds(i);
-    const double row[kN] = {1.0,
-                            SymmetricEventShape(tau, f->rise_s, f->decay_s),
-                            SymmetricEventShape(tau - f->delay_s, f->delay_rise_s, DelayDecay(*f)),
-                            NoisePeak(tau, f->noise_correlation_s)};
+    const double row[kN] = {1.0, zero[i], pair[i], noise[i]};
     const double w = 1.0 / (r.sigma[i] * r.sigma[i]);
     for (int p = 0; p < kN; ++p) {
       x[p] += w * row[p] * r.mean[i];
@@ -131,6 +147,15 @@ bool LinearPart(const EnvelopeCorrelation& r, int lags, EntryExitFit* f) {
   f->delay_power = x[2];
   f->noise_power = x[3];
   return true;
+}
+
+// The same at f's delay and shape.
+bool LinearPart(const EnvelopeCorrelation& r, int lags, EntryExitFit* f) {
+  std::vector<double> zero(lags), pair(lags), noise(lags);
+  for (int i = 0; i < lags; ++i)
+    zero[i] = ZeroLagColumn(r, i, *f), pair[i] = PairColumn(r, i, *f),
+    noise[i] = NoiseColumn(r, i, *f);
+  return LinearPartOf(r, lags, zero.data(), pair.data(), noise.data(), f);
 }
 
 struct Bounds {
@@ -193,24 +218,33 @@ EntryExitFit Fit(const EnvelopeCorrelation& r,
     // The pair peak's ring-down as a fraction of the zero-lag peak's (RingDownRatio).
     const std::vector<double> ring_down_ratios =
         bd.shared_ring_down ? std::vector<double>{0.0} : std::vector<double>{1.0, 0.5, 0.25};
+    // The zero-lag and noise columns depend on (rise, decay) only, the pair column on the rest:
+    // each is evaluated once per value it depends on, and only the best keeps its model.
+    std::vector<double> zero(lags), pair(lags), noise(lags), model(lags);
+    EntryExitFit f;
+    f.noise_correlation_s = bd.noise_correlation;
+    for (int i = 0; i < lags; ++i) noise[i] = NoiseColumn(r, i, f);
     for (double rise : {0.05e-3, 0.15e-3, 0.4e-3})
-      for (double decay : {0.15e-3, 0.4e-3, 1.0e-3})
+      for (double decay : {0.15e-3, 0.4e-3, 1.0e-3}) {
+        f.rise_s = std::clamp(rise, bd.min_rise, bd.max_rise);
+        f.decay_s = std::clamp(decay, bd.min_decay, bd.max_decay);
+        for (int i = 0; i < lags; ++i) zero[i] = ZeroLagColumn(r, i, f);
         for (double extra : {0.0, 0.1e-3})
           for (double ring_down_ratio : ring_down_ratios)
             for (int g = 0; g < grid; ++g) {
-              EntryExitFit f;
-              f.noise_correlation_s = bd.noise_correlation;
-              f.rise_s = std::clamp(rise, bd.min_rise, bd.max_rise);
               f.delay_rise_s = std::min(f.rise_s + extra, bd.max_rise + f.rise_s);
-              f.decay_s = std::clamp(decay, bd.min_decay, bd.max_decay);
               f.delay_decay_s = ring_down_ratio > 0 ? ring_down_ratio * f.decay_s : 0.0;
               f.delay_s = bd.min_delay + (bd.max_delay - bd.min_delay) * g / std::max(1, grid - 1);
-              if (!LinearPart(r, lags, &f)) continue;
-              f.model = ModelOf(r, lags, f);
-              f.chi2 = Chi2Of(r, f.model);
+              for (int i = 0; i < lags; ++i) pair[i] = PairColumn(r, i, f);
+              if (!LinearPartOf(r, lags, zero.data(), pair.data(), noise.data(), &f)) continue;
+              ModelFromColumns(f, zero.data(), pair.data(), noise.data(), &model);
+              f.chi2 = Chi2Of(r, model);
               if (f.chi2 < best.chi2) best = f;
             }
-    if (!std::isfinite(best.chi2)) {
+      }
+    if (std::isfinite(best.chi2)) {
+      best.model = ModelOf(r, lags, best);
+    } else {
       best = EntryExitFit{};
       best.noise_correlation_s = bd.noise_correlation;
       best.rise_s = best.delay_rise_s = bd.min_rise;

@@ -50,11 +50,11 @@ struct WidthFitOptions {
   // Correlation time of the band's noise (about 1 / band width; the Gaussian peak P_n at tau = 0
   // takes it); 0: one sample (white).
   double noise_correlation_s = 0.0;
-  // The two peaks' ring-downs: each its own (the default: the zero-lag peak holds every strike
-  // of a passage and the noise, the delayed one only release and landing paired, and a shared
-  // tau_d, set by the narrow zero-lag peak, misfits a broader pair peak so that the best fit over
-  // every delay can take a faint far lag instead, docs/IDENTIFY.md, "Width"), or one tau_d for
-  // both (true: the earlier model, for comparisons).
+  // The two peaks' ring-downs: each its own, the pair peak's at most the zero-lag peak's (the
+  // default: each side of the pair peak decays with one event's ring-down, the zero-lag peak with
+  // the slowest event's; a shared tau_d misfits a pair peak sharper than the zero-lag peak, and
+  // the best fit over every delay can then take a faint far lag instead, docs/IDENTIFY.md,
+  // "Width"), or one tau_d for both (true: for comparisons and the synthetic signal model).
   bool shared_ring_down = false;
   unsigned seed = 1;
 
@@ -100,6 +100,8 @@ struct EntryExitFit {
   double PairPowerRatio() const {
     return delay_power / std::max(1e-300, zero_lag_power + noise_power);
   }
+  // The pair peak's ring-down: tau_d1, or tau_d where it has none of its own.
+  double PairDecayS() const { return delay_decay_s > 0 ? delay_decay_s : decay_s; }
 };
 
 struct WidthFit {
