@@ -453,7 +453,6 @@ Identification Identify(const Record& record,
                                         id.cage_hz,
                                         options.sideband_harmonics,
                                         options.sideband_orders,
-                                        60,
                                         SidebandSpinStep(options));
     id.count_fit = FitRollerCount(id.cage_average, &id.sidebands, z, count);
     const CountFit& cf = id.count_fit;

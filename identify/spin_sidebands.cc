@@ -16,8 +16,8 @@ SpinSidebands MeasureSpinSidebands(std::span<const double> se,
                                    double cage_hz,
                                    int harmonics,
                                    int orders,
-                                   int window_bins,
-                                   int spin_step) {
+                                   int spin_step,
+                                   int window_bins) {
   SPALLKIT_CHECK(spin_hz > 0 && cage_hz > 0 && rate_hz > 0 && spin_step >= 1,
                  "bad sideband arguments");
   const int n = static_cast<int>(se.size()) - static_cast<int>(se.size()) % 2;

@@ -55,7 +55,7 @@ SpinSidebands MeasureSpinSidebands(std::span<const double> se,
                                    double cage_hz,
                                    int harmonics = 4,
                                    int orders = 4,
-                                   int window_bins = 60,
-                                   int spin_step = 1);
+                                   int spin_step = 1,
+                                   int window_bins = 60);
 
 }  // namespace spallkit::identify
