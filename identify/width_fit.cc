@@ -48,22 +48,22 @@ T Symmetric(const T& tau, const T& rise, const T& decay) {
   return T(0.5) * (Emg(tau, rise, decay) + Emg(-tau, rise, decay));
 }
 
+// The residuals of the correlation model. lin = {c, P_0, P_1, P_noise}, delay = {dt},
+// shape = {sigma_0, tau_d, sigma_1 - sigma_0} and, with the pair peak's own ring-down,
+// tau_d1 / tau_d (SharedRingDown false: a block of 4, else of 3).
+template <bool SharedRingDown>
 struct CorrelationResidual {
   const EnvelopeCorrelation* r;
   int lags;
   double noise_s;
-  bool shared_ring_down;
   template <typename T>
   bool operator()(const T* lin, const T* delay, const T* shape, T* residuals) const {
-    // lin = {c, P_0, P_1, P_noise}, delay = {dt},
-    // shape = {sigma_0, tau_d, sigma_1 - sigma_0, tau_d1 / tau_d} (the last unused with a shared
-    // ring-down)
     for (int i = 0; i < lags; ++i) {
       const T tau(r->TauSeconds(i));
+      T pair_decay = shape[1];
+      if constexpr (!SharedRingDown) pair_decay = shape[1] * shape[3];
       const T m = lin[0] + lin[1] * Symmetric(tau, shape[0], shape[1]) +
-                  lin[2] * Symmetric(tau - delay[0],
-                                     shape[0] + shape[2],
-                                     shared_ring_down ? shape[1] : shape[1] * shape[3]) +
+                  lin[2] * Symmetric(tau - delay[0], shape[0] + shape[2], pair_decay) +
                   lin[3] * NoisePeak(r->TauSeconds(i), noise_s);
       residuals[i] = (T(r->mean[i]) - m) / r->sigma[i];
     }
@@ -164,8 +164,8 @@ struct Bounds {
 };
 
 // The correlation model as a Ceres problem on (lin, delay, shape) = ((c, P_0, P_1, P_noise),
-// delay, (rise, decay, delay rise - rise)), with the bounds every fit of it keeps: P_0 and
-// P_noise >= 0 and the shape within `bd`.
+// delay, (rise, decay, delay rise - rise[, pair ring-down / decay])), with the bounds every fit of
+// it keeps: P_0 and P_noise >= 0 and the shape within `bd`.
 void AddCorrelationModel(const EnvelopeCorrelation& r,
                          int lags,
                          const Bounds& bd,
@@ -174,8 +174,14 @@ void AddCorrelationModel(const EnvelopeCorrelation& r,
                          double* delay,
                          double* shape,
                          ceres::Problem* problem) {
-  auto* cost = new ceres::AutoDiffCostFunction<CorrelationResidual, ceres::DYNAMIC, 4, 1, 4>(
-      new CorrelationResidual{&r, lags, noise_correlation_s, bd.shared_ring_down}, lags);
+  // A shared ring-down leaves shape[3] out of the problem (its block is the first three).
+  ceres::CostFunction* cost =
+      bd.shared_ring_down
+          ? static_cast<ceres::CostFunction*>(
+                new ceres::AutoDiffCostFunction<CorrelationResidual<true>, ceres::DYNAMIC, 4, 1, 3>(
+                    new CorrelationResidual<true>{&r, lags, noise_correlation_s}, lags))
+          : new ceres::AutoDiffCostFunction<CorrelationResidual<false>, ceres::DYNAMIC, 4, 1, 4>(
+                new CorrelationResidual<false>{&r, lags, noise_correlation_s}, lags);
   problem->AddResidualBlock(cost, nullptr, lin, delay, shape);
   problem->SetParameterLowerBound(lin, 1, 0.0);
   problem->SetParameterLowerBound(lin, 3, 0.0);
@@ -185,9 +191,10 @@ void AddCorrelationModel(const EnvelopeCorrelation& r,
   problem->SetParameterUpperBound(shape, 1, bd.max_decay);
   problem->SetParameterLowerBound(shape, 2, 0.0);
   problem->SetParameterUpperBound(shape, 2, bd.max_rise);
-  problem->SetParameterLowerBound(shape, 3, kMinRingDownRatio);
-  problem->SetParameterUpperBound(shape, 3, 1.0);
-  if (bd.shared_ring_down) problem->SetManifold(shape, new ceres::SubsetManifold(4, {3}));
+  if (!bd.shared_ring_down) {
+    problem->SetParameterLowerBound(shape, 3, kMinRingDownRatio);
+    problem->SetParameterUpperBound(shape, 3, 1.0);
+  }
 }
 
 ceres::Solver::Summary SolveQuietly(int max_iterations, ceres::Problem* problem) {
