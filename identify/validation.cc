@@ -1,6 +1,7 @@
 #include "identify/validation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
@@ -19,6 +20,9 @@
 
 namespace spallkit::identify {
 namespace {
+
+// Width classes of the summary's per-width line (m).
+constexpr double kWidthClassM = 0.5e-3;
 
 // SplitMix64 (portable: the same noise with every standard library) and Box-Muller.
 class NormalStream {
@@ -327,6 +331,24 @@ std::string ValidationReport::Summary() const {
          << ", 90th percentile " << FormatNumber("%.1f %%", 100 * p90);
     }
     os << "\n";
+    // The same per class of the true width (0.5 mm classes): where the failures lie.
+    std::map<int, std::array<int, 4>> by_width;  // spalled, no roller signature, right, within
+    for (const auto* r : rs) {
+      if (r->true_count == 0) continue;
+      auto& c = by_width[static_cast<int>(std::floor(r->true_width_m / kWidthClassM))];
+      ++c[0];
+      c[1] += r->verdict != "rolling_element";
+      c[2] += r->count_stated && r->count == r->true_count;
+      c[3] += r->width_stated && std::abs(r->width_m - r->true_width_m) <= 0.15 * r->true_width_m;
+    }
+    if (!by_width.empty()) {
+      os << "  by true width (spalled; no roller signature, count right, width within 15 %):";
+      for (const auto& [cls, c] : by_width)
+        os << FormatNumber(" [%.1f", cls * kWidthClassM * 1e3)
+           << FormatNumber("-%.1f) mm: ", (cls + 1) * kWidthClassM * 1e3) << c[0] << "; " << c[1]
+           << ", " << c[2] << ", " << c[3] << ";";
+      os << "\n";
+    }
     double cpu = 0.0, secs = 0.0;
     for (const auto* r : rs) cpu += r->cpu_s, secs += r->record_s;
     os << "  CPU (diagnosis + identification, one thread): "
