@@ -23,6 +23,7 @@ struct IdentifyStatementOptions {
   std::vector<double> temperatures;
   CLI::Option* temperatures_option = nullptr;
   bool pattern_per_parity = false;
+  bool second_pattern = false;
   int sideband_spin_step = identify::IdentifyOptions().sideband_spin_step;
   CLI::Option* spin_step_option = nullptr;
   bool width_needs_count = false;
@@ -60,6 +61,10 @@ struct IdentifyStatementOptions {
                  pattern_per_parity,
                  "the count's sideband feature with one cage-angle pattern for the odd and one for "
                  "the even spin harmonics (measured, not the default: docs/IDENTIFY.md)");
+    sub.add_flag("--sideband-second-pattern",
+                 second_pattern,
+                 "the count's sideband feature with a second, fitted cage-angle pattern per roller "
+                 "(docs/IDENTIFY.md)");
     spin_step_option = sub.add_option(
         "--sideband-spin-step",
         sideband_spin_step,
@@ -138,6 +143,7 @@ struct IdentifyStatementOptions {
         t->width_contact_load_fraction = width_load_fraction;
       });
     if (pattern_per_parity) o->count.sideband_pattern_per_parity = true;
+    if (second_pattern) o->count.sideband_second_pattern = true;
     if (width_needs_count) o->width_over_uncertain_count = false;
     if (width_shared_ring_down) o->width.shared_ring_down = true;
     if (count_without_cage_hump) o->count_needs_cage_hump = false;

@@ -296,6 +296,141 @@ double SidebandChi2At(const SpinSidebands& sb,
   return chi2;
 }
 
+// Feature B's chi2 with a second cage-angle pattern per roller: S_jm = sum_k a_k e^{-i j phi_k}
+// e^{i m (2 pi s_k / Z - theta_0 - delta)} (p_j M_m + q_j N_m), M_m the hump's coefficients
+// (real, symmetric in m) and N_m a second real pattern symmetric in m, fitted and shared by the
+// rollers and the harmonics, with p_j, q_j complex per harmonic and a_k real, by alternating
+// least squares (steer[(m + M) k + q] = e^{i m (...)} of roller q; mm[|m|] = M_m).
+double SidebandChi2AtTwoPatterns(const SpinSidebands& sb,
+                                 int k,
+                                 const std::vector<std::complex<double>>& steer,
+                                 const std::vector<double>& mm,
+                                 const std::vector<double>& phase) {
+  const int orders = sb.orders, lines = 2 * orders + 1, nj = sb.harmonics;
+  auto idx = [&](int j, int m) { return static_cast<size_t>(j - 1) * lines + m + orders; };
+  // v[(j, m), q] = e^{-i j phi_q} e^{i m (...)}.
+  std::vector<std::complex<double>> v(static_cast<size_t>(nj) * lines * k);
+  for (int q = 0; q < k; ++q) {
+    const std::complex<double> e1 = std::polar(1.0, -phase[q]);
+    std::complex<double> e = e1;
+    for (int j = 1; j <= nj; ++j, e *= e1)
+      for (int m = -orders; m <= orders; ++m)
+        v[idx(j, m) * k + q] = e * steer[(m + orders) * k + q];
+  }
+  // Second pattern: start from m^2 M_m with its M component removed (orthogonal to M).
+  std::vector<double> n_pat(orders + 1);
+  {
+    double mm2 = 0.0, mn = 0.0;
+    for (int m = 0; m <= orders; ++m) {
+      n_pat[m] = (m * m + 1.0) * mm[m];
+      mm2 += mm[m] * mm[m];
+      mn += mm[m] * n_pat[m];
+    }
+    double norm = 0.0;
+    for (int m = 0; m <= orders; ++m) {
+      n_pat[m] -= (mm2 > 0 ? mn / mm2 : 0.0) * mm[m];
+      norm += n_pat[m] * n_pat[m];
+    }
+    if (!(norm > 0)) return std::numeric_limits<double>::infinity();
+    for (double& x : n_pat) x /= std::sqrt(norm);
+  }
+  std::vector<double> a(k, 1.0);
+  std::vector<std::complex<double>> p(nj, 0.0), qc(nj, 0.0), u(static_cast<size_t>(nj) * lines);
+  auto weight = [&](int j, int m) { return 1.0 / (0.5 * sb.noise_power[sb.Index(j, m)]); };
+  auto update_u = [&]() {
+    for (int j = 1; j <= nj; ++j)
+      for (int m = -orders; m <= orders; ++m) {
+        std::complex<double> x = 0.0;
+        for (int q = 0; q < k; ++q) x += a[q] * v[idx(j, m) * k + q];
+        u[idx(j, m)] = x;
+      }
+  };
+  auto solve_pq = [&]() {  // per harmonic, 2 x 2 complex normal equations
+    for (int j = 1; j <= nj; ++j) {
+      std::complex<double> a11 = 0.0, a12 = 0.0, a22 = 0.0, b1 = 0.0, b2 = 0.0;
+      for (int m = -orders; m <= orders; ++m) {
+        const double w = weight(j, m);
+        const std::complex<double> c1 = u[idx(j, m)] * mm[std::abs(m)];
+        const std::complex<double> c2 = u[idx(j, m)] * n_pat[std::abs(m)];
+        const std::complex<double> y = sb.value[sb.Index(j, m)];
+        a11 += w * std::norm(c1);
+        a22 += w * std::norm(c2);
+        a12 += w * std::conj(c1) * c2;
+        b1 += w * std::conj(c1) * y;
+        b2 += w * std::conj(c2) * y;
+      }
+      const std::complex<double> det = a11 * a22 - a12 * std::conj(a12);
+      if (std::abs(det) > 1e-12 * std::abs(a11 * a22)) {
+        p[j - 1] = (a22 * b1 - a12 * b2) / det;
+        qc[j - 1] = (a11 * b2 - std::conj(a12) * b1) / det;
+      } else {
+        p[j - 1] = std::abs(a11) > 0 ? b1 / a11 : 0.0;
+        qc[j - 1] = 0.0;
+      }
+    }
+  };
+  auto solve_n = [&]() {  // per |m|, given p, q
+    double norm = 0.0;
+    for (int mu = 0; mu <= orders; ++mu) {
+      double num = 0.0, den = 0.0;
+      for (int sign : {-1, 1}) {
+        if (mu == 0 && sign > 0) continue;
+        const int m = sign * mu;
+        for (int j = 1; j <= nj; ++j) {
+          const double w = weight(j, m);
+          const std::complex<double> c2 = qc[j - 1] * u[idx(j, m)];
+          const std::complex<double> r =
+              sb.value[sb.Index(j, m)] - p[j - 1] * u[idx(j, m)] * mm[mu];
+          num += w * std::real(std::conj(c2) * r);
+          den += w * std::norm(c2);
+        }
+      }
+      n_pat[mu] = den > 0 ? num / den : 0.0;
+      norm += n_pat[mu] * n_pat[mu];
+    }
+    if (norm > 0)
+      for (double& x : n_pat) x /= std::sqrt(norm);
+  };
+  auto solve_a = [&]() {  // K real strengths, given the per-roller pattern
+    std::vector<double> ata(static_cast<size_t>(k) * k, 0.0), atb(k, 0.0);
+    for (int j = 1; j <= nj; ++j)
+      for (int m = -orders; m <= orders; ++m) {
+        const double w = weight(j, m);
+        const std::complex<double> r = p[j - 1] * mm[std::abs(m)] + qc[j - 1] * n_pat[std::abs(m)];
+        for (int rr = 0; rr < k; ++rr) {
+          const std::complex<double> br = r * v[idx(j, m) * k + rr];
+          atb[rr] += w * std::real(std::conj(br) * sb.value[sb.Index(j, m)]);
+          for (int c = 0; c < k; ++c)
+            ata[rr * k + c] += w * std::real(std::conj(br) * r * v[idx(j, m) * k + c]);
+        }
+      }
+    if (!SolveSymmetric(k, &ata, &atb)) return;
+    const double amax = *std::max_element(atb.begin(), atb.end());
+    if (!(amax > 0)) return;
+    for (int q = 0; q < k; ++q) a[q] = std::max(atb[q], 0.0) / amax;
+  };
+  constexpr int kAlternations = 6;
+  update_u();
+  for (int it = 0; it < kAlternations; ++it) {
+    solve_pq();
+    solve_n();
+    solve_pq();
+    if (k > 1) {
+      solve_a();
+      update_u();
+    }
+  }
+  solve_pq();
+  double chi2 = 0.0;
+  for (int j = 1; j <= nj; ++j)
+    for (int m = -orders; m <= orders; ++m) {
+      const std::complex<double> model =
+          u[idx(j, m)] * (p[j - 1] * mm[std::abs(m)] + qc[j - 1] * n_pat[std::abs(m)]);
+      chi2 += std::norm(sb.value[sb.Index(j, m)] - model) * weight(j, m);
+    }
+  return chi2;
+}
+
 // Feature B's chi2 of a configuration for given spin phases of rollers 2..K (roller 1's is in
 // p_j): S_jm = p_j G^(j mod 2)_m sum_k a_k e^{-i j phi_k} e^{i m 2 pi s_k / Z}, with p_j
 // (complex, per harmonic), the cage-angle patterns G^0, G^1 (complex per order m, shared by the
@@ -584,7 +719,8 @@ double SidebandChi2(const SpinSidebands& sb,
                     int z,
                     int* parameters,
                     std::vector<double>* spin_phase,
-                    bool pattern_per_parity) {
+                    bool pattern_per_parity,
+                    bool second_pattern) {
   const int k = static_cast<int>(f.slots.size());
   std::vector<double> phase(k, 0.0);
   if (k == 0) {
@@ -609,7 +745,8 @@ double SidebandChi2(const SpinSidebands& sb,
     if (spin_phase) *spin_phase = phase;
     return c;
   }
-  *parameters = 2 * sb.harmonics + 2 * (k - 1) + 1 + 1;
+  *parameters =
+      2 * sb.harmonics + 2 * (k - 1) + 1 + 1 + (second_pattern ? 2 * sb.harmonics + sb.orders : 0);
   const int kDeltaSteps = k <= 3 ? 7 : 3;
   const double range = 2.0 * kPi / z;  // +/- one slot
   // The hump's spectrum: feature A's shape of this configuration, or a plain q of the same half
@@ -626,14 +763,26 @@ double SidebandChi2(const SpinSidebands& sb,
   for (const HumpShape& shape : shapes) {
     const std::vector<double> mm = HumpFourier(shape, sb.orders);
     std::vector<std::complex<double>> em(static_cast<size_t>(2 * sb.orders + 1) * k);
+    std::vector<std::complex<double>> steer(em.size());
     auto at = [&](double delta) {
       for (int m = -sb.orders; m <= sb.orders; ++m)
-        for (int q = 0; q < k; ++q)
-          em[(m + sb.orders) * k + q] =
-              mm[std::abs(m)] *
+        for (int q = 0; q < k; ++q) {
+          steer[(m + sb.orders) * k + q] =
               std::polar(1.0, m * (2.0 * kPi * f.slots[q] / z - f.theta0_rad - delta));
-      const double c = SearchSpinPhases(
-          k, [&](const std::vector<double>& ph) { return SidebandChi2At(sb, f, em, ph); }, &phase);
+          em[(m + sb.orders) * k + q] = mm[std::abs(m)] * steer[(m + sb.orders) * k + q];
+        }
+      const double c =
+          second_pattern
+              ? SearchSpinPhases(
+                    k,
+                    [&](const std::vector<double>& ph) {
+                      return SidebandChi2AtTwoPatterns(sb, k, steer, mm, ph);
+                    },
+                    &phase)
+              : SearchSpinPhases(
+                    k,
+                    [&](const std::vector<double>& ph) { return SidebandChi2At(sb, f, em, ph); },
+                    &phase);
       if (c < best_phase_chi2) best_phase_chi2 = c, best_phase = phase;
       return c;
     };
@@ -706,8 +855,13 @@ CountFit FitRollerCount(const CageAverage& average,
   auto score_b = [&](HumpFit* f) {
     int p = 0;
     if (sb)
-      f->chi2_sidebands =
-          SidebandChi2(*sb, *f, z, &p, &f->spin_phase_rad, o.sideband_pattern_per_parity);
+      f->chi2_sidebands = SidebandChi2(*sb,
+                                       *f,
+                                       z,
+                                       &p,
+                                       &f->spin_phase_rad,
+                                       o.sideband_pattern_per_parity,
+                                       o.sideband_second_pattern);
     return p;
   };
   auto valid = [&](const HumpFit& f) {

@@ -87,6 +87,9 @@ struct CountFitOptions {
   // the rollers, instead of feature A's hump for every harmonic (see "Feature B" above). Off by
   // default: measured, not adopted (docs/IDENTIFY.md, "Feature B's patterns per parity").
   bool sideband_pattern_per_parity = false;
+  // Feature B with a second cage-angle pattern per roller (real, symmetric about the roller's
+  // load-line crossing, fitted and shared by the rollers and harmonics; docs/IDENTIFY.md).
+  bool sideband_second_pattern = false;
   // Temperatures of each feature's log evidence: P(K) is proportional to
   // exp(ln Z_A(K) / temperature_cage + ln Z_B(K) / temperature_sidebands). The BIC evidence
   // assumes the model is right up to independent noise; on simulated records it is not (the
@@ -186,7 +189,8 @@ double SidebandChi2(const SpinSidebands& sidebands,
                     int z,
                     int* parameters,
                     std::vector<double>* spin_phase = nullptr,
-                    bool pattern_per_parity = false);
+                    bool pattern_per_parity = false,
+                    bool second_pattern = false);
 
 // Fourier coefficients M_m = (1/2 pi) int H(x) cos(m x) dx, m = 0..orders (H without bin width).
 std::vector<double> HumpFourier(const HumpShape& shape, int orders);

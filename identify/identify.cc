@@ -743,6 +743,7 @@ std::string Identification::ToJson(int indent) const {
   settings["temperatures"] = {{"cage_average", options.count.temperature_cage},
                               {"sidebands", options.count.temperature_sidebands}};
   settings["sideband_pattern_per_parity"] = options.count.sideband_pattern_per_parity;
+  settings["sideband_second_pattern"] = options.count.sideband_second_pattern;
   settings["sideband_spin_step"] = SidebandSpinStep(options);
   settings["width_shared_ring_down"] = options.width.shared_ring_down;
   settings["max_pair_power_ratio"] = std::isfinite(options.max_pair_power_ratio)
