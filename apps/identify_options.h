@@ -57,14 +57,16 @@ struct IdentifyStatementOptions {
                            Number(count.temperature_sidebands) + ")")
             ->expected(2)
             ->delimiter(',');
-    sub.add_flag("--sideband-pattern-per-parity",
-                 pattern_per_parity,
-                 "the count's sideband feature with one cage-angle pattern for the odd and one for "
-                 "the even spin harmonics (measured, not the default: docs/IDENTIFY.md)");
+    CLI::Option* per_parity_flag = sub.add_flag(
+        "--sideband-pattern-per-parity",
+        pattern_per_parity,
+        "the count's sideband feature with one cage-angle pattern for the odd and one for "
+        "the even spin harmonics (measured, not the default: docs/IDENTIFY.md)");
     sub.add_flag("--sideband-second-pattern",
                  second_pattern,
                  "the count's sideband feature with a second, fitted cage-angle pattern per roller "
-                 "(docs/IDENTIFY.md)");
+                 "(measured, not the default: docs/IDENTIFY.md)")
+        ->excludes(per_parity_flag);
     spin_step_option = sub.add_option(
         "--sideband-spin-step",
         sideband_spin_step,

@@ -572,6 +572,9 @@ bool CountFitOptions::IsValid(std::string* error) const {
   };
   if (max_count < -1) return fail("count fit: max_count must be >= 0, or -1 for every roller");
   if (refine < 1) return fail("count fit: refine must be >= 1");
+  if (sideband_pattern_per_parity && sideband_second_pattern)
+    return fail(
+        "count fit: sideband_pattern_per_parity and sideband_second_pattern exclude each other");
   if (theta_grid_per_slot < 1) return fail("count fit: theta_grid_per_slot must be >= 1");
   if (!(load_zone_half_angle_rad >= 0 && load_zone_half_angle_rad <= kPi))
     return fail("count fit: load_zone_half_angle_rad must be in [0, pi]");

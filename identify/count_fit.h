@@ -33,6 +33,13 @@
 // later, so its odd harmonics carry the difference of the two races' impacts and its even ones
 // their sum, and the two reach the sensor with different weights over the cage angle.
 //
+// With CountFitOptions::sideband_second_pattern (not the default; not with the per-parity
+// patterns) each roller carries a second pattern N_m, real and symmetric about its load-line
+// crossing (like M_m), fitted and shared by the rollers and the harmonics:
+//     S_jm = sum_k a_k e^{-i j phi_k} e^{i m (2 pi s_k / Z - theta_0 - delta)} (p_j M_m + q_j N_m),
+// q_j complex per harmonic: a wide spall's lines hold two such patterns (docs/IDENTIFY.md, "Where
+// the failures lie").
+//
 // Search. A configuration is the slot set up to rotation (a necklace containing slot 0): 1 for
 // K = 1, 6 for K = 2 and 22 for K = 3 on 13 slots. Up to exhaustive_max_count every configuration
 // is screened (feature A by weighted linear least squares in (b, a) with a fixed shape, on a grid
@@ -182,7 +189,8 @@ double RollerHump(const CageAverage& average, const HumpFit& fit, int z, size_t 
 // Feature B's chi2 of one configuration (its slots, strengths, theta_0 and shape from feature
 // A), minimised over the spin phases, strength ratios, a hump offset and two shapes as described
 // above (with pattern_per_parity: over the spin phases and strength ratios with the patterns per
-// parity); *parameters receives its parameter count. Exposed for tests.
+// parity; with second_pattern: with the second pattern per roller as well); *parameters receives
+// its parameter count. Exposed for tests.
 // *spin_phase (may be null) receives phi_k (phi_1 = 0).
 double SidebandChi2(const SpinSidebands& sidebands,
                     const HumpFit& fit,
