@@ -3,7 +3,8 @@
 # simulated records") in one command: generates the six lumped-model sets of datasets/sweeps/identify-*.toml
 # (lumped model; `spall dataset run` resumes a folder it finds part-done), runs `spall
 # identify-check` on each at clean, 10 and 0 dB (horizontal channel, the scene's load given) and
-# prints one table of counts right / wrong / refused and widths stated / within 15 %.
+# prints one table of counts right / wrong / refused and widths stated / within 15 %, and one by
+# class of the true width.
 #
 #   bash scripts/identify_validation.sh [OUT_DIR]      (default runs/identify)
 #
@@ -70,4 +71,22 @@ for set in $SETS; do
       printf "%-12s %-6s %-22s %s of %s (%s)\n", set, snr, right "/" wrong "/" refused, stated,
              spalled, within
     }' "$OUT/$set.check.txt"
+done
+# The same per class of the true width, the three SNRs summed (docs/IDENTIFY.md, "Where the
+# failures lie"): spalled record-SNR pairs; no roller signature, counts right, widths within 15 %.
+printf '\n%-12s %-12s %s\n' set "width (mm)" "spalled; no roller signature, count right, width within 15 %"
+for set in $SETS; do
+  awk -v set="$set" '
+    /by true width/ {
+      line = $0
+      while (match(line, /\[[0-9.]+-[0-9.]+\) mm: [0-9]+; [0-9]+, [0-9]+, [0-9]+;/)) {
+        item = substr(line, RSTART, RLENGTH); line = substr(line, RSTART + RLENGTH)
+        split(item, f, /[][ ;,)]+/)
+        cls = f[2]; n[cls] += f[4]; ns[cls] += f[5]; r[cls] += f[6]; w[cls] += f[7]
+        if (!(cls in seen)) { seen[cls] = 1; order[++k] = cls }
+      }
+    }
+    END { for (i = 1; i <= k; ++i) { c = order[i]
+            printf "%-12s %-12s %d; %d, %d, %d\n", set, c, n[c], ns[c], r[c], w[c] } }' \
+    "$OUT/$set.check.txt"
 done
