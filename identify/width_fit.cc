@@ -93,12 +93,21 @@ void ModelFromColumns(const EntryExitFit& f,
         f.offset + f.zero_lag_power * zero[i] + f.delay_power * pair[i] + f.noise_power * noise[i];
 }
 
+// The three columns at f's delay and shape.
+struct Columns {
+  std::vector<double> zero, pair, noise;
+  Columns(const EnvelopeCorrelation& r, int lags, const EntryExitFit& f)
+      : zero(lags), pair(lags), noise(lags) {
+    for (int i = 0; i < lags; ++i)
+      zero[i] = ZeroLagColumn(r, i, f), pair[i] = PairColumn(r, i, f),
+      noise[i] = NoiseColumn(r, i, f);
+  }
+};
+
 std::vector<double> ModelOf(const EnvelopeCorrelation& r, int lags, const EntryExitFit& f) {
-  std::vector<double> zero(lags), pair(lags), noise(lags), m(lags);
-  for (int i = 0; i < lags; ++i)
-    zero[i] = ZeroLagColumn(r, i, f), pair[i] = PairColumn(r, i, f),
-    noise[i] = NoiseColumn(r, i, f);
-  ModelFromColumns(f, zero.data(), pair.data(), noise.data(), &m);
+  const Columns c(r, lags, f);
+  std::vector<double> m(lags);
+  ModelFromColumns(f, c.zero.data(), c.pair.data(), c.noise.data(), &m);
   return m;
 }
 
@@ -151,11 +160,8 @@ bool LinearPartOf(const EnvelopeCorrelation& r,
 
 // The same at f's delay and shape.
 bool LinearPart(const EnvelopeCorrelation& r, int lags, EntryExitFit* f) {
-  std::vector<double> zero(lags), pair(lags), noise(lags);
-  for (int i = 0; i < lags; ++i)
-    zero[i] = ZeroLagColumn(r, i, *f), pair[i] = PairColumn(r, i, *f),
-    noise[i] = NoiseColumn(r, i, *f);
-  return LinearPartOf(r, lags, zero.data(), pair.data(), noise.data(), f);
+  const Columns c(r, lags, *f);
+  return LinearPartOf(r, lags, c.zero.data(), c.pair.data(), c.noise.data(), f);
 }
 
 struct Bounds {
