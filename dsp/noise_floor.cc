@@ -44,13 +44,11 @@ NormalizedSpectrum NormalizeSpectrumWindow(std::span<const double> power,
   std::vector<int> anchors;
   for (int i = 1; i < n; i += step) anchors.push_back(i);
   if (anchors.back() != n - 1) anchors.push_back(n - 1);
+  std::vector<int> starts(anchors.size());
+  for (size_t a = 0; a < anchors.size(); ++a) starts[a] = std::clamp(anchors[a] - w / 2, 1, n - w);
   std::vector<double> anchor_floor(anchors.size());
-  std::vector<double> scratch(3 * (w + 8));
-  for (size_t a = 0; a < anchors.size(); ++a) {
-    int start = anchors[a] - w / 2;
-    start = std::clamp(start, 1, n - w);
-    anchor_floor[a] = SelectKth(power.data() + start, w, w / 2, scratch.data()) / std::numbers::ln2;
-  }
+  SlidingSelectKth(power.data(), starts, w, w / 2, anchor_floor);
+  for (double& f : anchor_floor) f /= std::numbers::ln2;
   // Linear interpolation between anchors, segment by segment (loops that vectorise; the same
   // arithmetic as a bin-by-bin walk). Bins up to the first anchor take its value.
   const double tiny = std::numeric_limits<double>::min();
