@@ -203,17 +203,11 @@ NormalizedSpectrum NormalizeBandSes(const std::vector<double>& power,
                                     double df,
                                     double band_width_hz,
                                     const DetectionOptions& options) {
-  std::vector<double> shape(power.size()), flat(power.size());
-  for (size_t k = 0; k < power.size(); ++k) {
-    shape[k] = std::max(0.1, 1.0 - k * df / band_width_hz);
-    flat[k] = power[k] / shape[k];
-  }
-  NormalizedSpectrum n = NormalizeSpectrum(flat, df, options);
-  for (size_t k = 0; k < power.size(); ++k) {
-    n.power[k] = power[k];
-    n.floor[k] *= shape[k];
-  }
-  return n;
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError("detection: " + error);
+  std::vector<double> shape(power.size());
+  for (size_t k = 0; k < power.size(); ++k) shape[k] = std::max(0.1, 1.0 - k * df / band_width_hz);
+  return NormalizeSpectrumWindow(power, df, options.floor_window_bins, shape);
 }
 
 // Band preference: a band where some family is detected beats one where none is; then the

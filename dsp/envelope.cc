@@ -311,8 +311,7 @@ void EnvelopeAnalyzer::PackedSesPower(
   // (std::complex's operator* checks for NaN and does not vectorise).
   const float* zf = reinterpret_cast<const float*>(zs);
   const double* tw = reinterpret_cast<const double*>(p.twiddle.data());
-  for (int k = 1; k <= alpha_bins; ++k) {
-    const int kk = k == h ? 0 : k, hk = h - kk == h ? 0 : h - kk;
+  auto bin = [&](int k, int kk, int hk) {
     const double zr = zf[2 * kk], zi = zf[2 * kk + 1];
     const double cr = zf[2 * hk], ci = -zf[2 * hk + 1];  // conj Z_{h-k}
     const double er = 0.5 * (zr + cr), ei = 0.5 * (zi + ci);
@@ -320,7 +319,11 @@ void EnvelopeAnalyzer::PackedSesPower(
     const double wr = tw[2 * k], wi = tw[2 * k + 1];
     const double xr = er + wr * o_r - wi * o_i, xi = ei + wr * o_i + wi * o_r;
     power[k] = (xr * xr + xi * xi) * scale;
-  }
+  };
+  // k < h in one loop without index cases (it vectorises), k = h on its own.
+  const int below_h = std::min(alpha_bins, h - 1);
+  for (int k = 1; k <= below_h; ++k) bin(k, k, h - k);
+  if (alpha_bins == h) bin(h, 0, 0);
   power[0] = 0.0;  // mean removed
 }
 

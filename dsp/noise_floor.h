@@ -30,8 +30,12 @@ struct NormalizedSpectrum {
 // Running median / ln 2 over window_bins bins (the window is shifted, not clipped, at the
 // spectrum edges; bin 0 is ignored). Computed every few bins and interpolated linearly. Throws
 // InputError when the spectrum has no more than window_bins bins or the resolution is <= 0.
+// With a shape (as many values as bins, > 0): the spectrum's expected form, so the median runs
+// on the flattened power / shape, z = (power / shape) / that floor, and floor is multiplied back
+// by the shape.
 NormalizedSpectrum NormalizeSpectrumWindow(std::span<const double> power,
                                            double resolution_hz,
-                                           int window_bins);
+                                           int window_bins,
+                                           std::span<const double> shape = {});
 
 }  // namespace spallkit::dsp
