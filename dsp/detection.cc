@@ -99,6 +99,54 @@ std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
   return out;
 }
 
+SPALLKIT_MULTIVERSION
+std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
+                               const DetectionOptions& options,
+                               std::span<const std::pair<int, int>> runs) {
+  const int nbins = static_cast<int>(spectrum.z.size());
+  const int count = std::max(0, nbins - 1);
+  std::vector<double> out(count, 0.0);
+  const double n_eff = spectrum.effective_samples;
+  const double cap = std::min(options.max_line_score, -std::log(1e-300));
+  const double* z = spectrum.z.data();
+  for (const auto& [first, last] : runs) {
+    SPALLKIT_CHECK(0 <= first && first <= last && last <= count,
+                   "pair scores: run [" << first << ", " << last << ") of " << count << " pairs");
+    for (int i = first; i < last; ++i) out[i] = PairScoreOf(z[i], z[i + 1], n_eff, cap);
+  }
+  return out;
+}
+
+std::vector<std::pair<int, int>> ScoredPairRuns(std::span<const CombSearch> plans) {
+  std::vector<std::pair<int, int>> runs;
+  if (plans.empty()) return runs;
+  const int bins = plans.front().bins();
+  std::vector<unsigned char> scored(bins, 0);
+  for (const CombSearch& plan : plans) plan.MarkScoredPairs(&scored);
+  for (int b = 0; b < bins;) {
+    if (!scored[b]) {
+      ++b;
+      continue;
+    }
+    const int first = b;
+    while (b < bins && scored[b]) ++b;
+    runs.emplace_back(first, b);
+  }
+  return runs;
+}
+
+void CombSearch::MarkScoredPairs(std::vector<unsigned char>* scored) const {
+  SPALLKIT_CHECK(static_cast<int>(scored->size()) == nbins_,
+                 "comb search: a mask of " << scored->size() << " for " << nbins_ << " bins");
+  const int grid = static_cast<int>(s_grid_.size());
+  for (size_t l = 0; l < family_.lines.size(); ++l) {
+    if (family_.lines[l].half_order) continue;
+    const int* bin = bins_.data() + l * grid;
+    for (int g = 0; g < grid; ++g)
+      if (bin[g] >= 0) (*scored)[bin[g]] = 1;
+  }
+}
+
 CombSearch::CombSearch(const FaultFamily& family,
                        const DetectionContext& context,
                        const DetectionOptions& options,

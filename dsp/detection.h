@@ -172,6 +172,12 @@ FamilyDetection DetectFamily(const NormalizedSpectrum& spectrum,
 // scores sum. One vectorised pass per spectrum, shared by every family searched on it.
 std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
                                const DetectionOptions& options = {});
+// The same, computed only on the half-open runs [first, second) of pairs (the others are 0): the
+// pairs some comb plans read (CombSearch::MarkScoredPairs), where a spectrum is searched for
+// several families and most of its bins lie in none of their windows.
+std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
+                               const DetectionOptions& options,
+                               std::span<const std::pair<int, int>> runs);
 
 // DetectFamily in two parts, for searching the same family in many spectra of the same
 // resolution and size (the diagnosis's candidate bands): the comb plan (speed grid, the bins
@@ -191,6 +197,9 @@ class CombSearch {
   FamilyDetection Detect(const NormalizedSpectrum& spectrum,
                          std::span<const double> pair_scores) const;
   int bins() const { return nbins_; }
+  // Sets (*scored)[b] = 1 for every pair (b, b + 1) that Detect() reads the score of; the other
+  // entries of pair_scores may hold anything. scored must hold bins() values.
+  void MarkScoredPairs(std::vector<unsigned char>* scored) const;
 
  private:
   bool Excluded(double f, double s, std::string* why) const;
@@ -221,5 +230,9 @@ class CombSearch {
   std::vector<int> used_;  // lines used (not excluded) at each grid point
   int combinations_ = 0;   // distinct bin combinations along the grid
 };
+
+// The runs [first, second) of pairs that any of plans (all of one size) reads, in order: the
+// runs for PairScores(spectrum, options, runs).
+std::vector<std::pair<int, int>> ScoredPairRuns(std::span<const CombSearch> plans);
 
 }  // namespace spallkit::dsp

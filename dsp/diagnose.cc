@@ -543,20 +543,28 @@ BandResult SearchCandidateBands(const EnvelopeAnalyzer& analyzer,
   const int floor_half = options.floor_window_bins / 2 + 2;
   // Comb plans (dsp/detection.h, CombSearch): the speed grid, the bins each line visits and the
   // exclusions depend on the spectrum's size only, which is the same for (nearly) every band, so
-  // they are made once per size instead of once per band and family. A deque keeps references
-  // valid while another thread adds a size; lookups and additions are serialised.
-  std::deque<std::pair<int, std::vector<CombSearch>>> comb_plans;
-  auto plans_for = [&](int bins) -> const std::vector<CombSearch>* {
-    const std::vector<CombSearch>* found = nullptr;
+  // they are made once per size instead of once per band and family, with the runs of pairs
+  // they read (the only pair scores computed). A deque keeps references valid while another
+  // thread adds a size; lookups and additions are serialised.
+  struct CombPlans {
+    int bins = 0;
+    std::vector<CombSearch> plans;
+    std::vector<std::pair<int, int>> scored_runs;
+  };
+  std::deque<CombPlans> comb_plans;
+  auto plans_for = [&](int bins) -> const CombPlans* {
+    const CombPlans* found = nullptr;
 #pragma omp critical(spallkit_diagnose_comb_plans)
     {
       for (const auto& p : comb_plans)
-        if (p.first == bins) found = &p.second;
+        if (p.bins == bins) found = &p;
       if (!found) {
-        std::vector<CombSearch> plans;
-        for (const auto& family : d->families) plans.emplace_back(family, ctx, dopt, df, bins);
-        comb_plans.emplace_back(bins, std::move(plans));
-        found = &comb_plans.back().second;
+        CombPlans c;
+        c.bins = bins;
+        for (const auto& family : d->families) c.plans.emplace_back(family, ctx, dopt, df, bins);
+        c.scored_runs = ScoredPairRuns(c.plans);
+        comb_plans.push_back(std::move(c));
+        found = &comb_plans.back();
       }
     }
     return found;
@@ -597,8 +605,9 @@ BandResult SearchCandidateBands(const EnvelopeAnalyzer& analyzer,
     r->normalized.envelope_mean = SquaredEnvelopeMean(analyzer, lo, hi);
     // Each family on its own here; which family explains which line is decided jointly on the
     // chosen band (dsp/explain.h).
-    const std::vector<double> pair_scores = PairScores(r->normalized, dopt);
-    for (const CombSearch& plan : *plans_for(static_cast<int>(r->normalized.z.size())))
+    const CombPlans& plans = *plans_for(static_cast<int>(r->normalized.z.size()));
+    const std::vector<double> pair_scores = PairScores(r->normalized, dopt, plans.scored_runs);
+    for (const CombSearch& plan : plans.plans)
       r->detections.push_back(plan.Detect(r->normalized, pair_scores));
     for (const auto& det : r->detections) r->best_p = std::min(r->best_p, det.p_value);
   };

@@ -51,6 +51,7 @@ TEST(DetectionComb, PlanReusedAcrossSpectraEqualsDetectFamily) {
   const int n = 9201;
   std::vector<CombSearch> plans;
   for (const auto& f : fams) plans.emplace_back(f, ctx, o, df, n);
+  const auto runs = ScoredPairRuns(plans);
   int detected = 0;
   for (int seed = 0; seed < 6; ++seed) {
     // Inner-race lines with shaft sidebands in half the spectra, noise only in the others.
@@ -58,9 +59,12 @@ TEST(DetectionComb, PlanReusedAcrossSpectraEqualsDetectFamily) {
     const auto s =
         NormalizeSpectrum(Spectrum(n, df, fams[1].fundamental_hz, shaft, height, seed), df, o);
     const auto scores = PairScores(s, o);
+    // Only the pairs the plans read (the diagnosis's way): the same detections.
+    const auto run_scores = PairScores(s, o, runs);
     for (size_t f = 0; f < fams.size(); ++f) {
-      const FamilyDetection a = plans[f].Detect(s, scores);
+      const FamilyDetection a = plans[f].Detect(s, run_scores);
       const FamilyDetection b = DetectFamily(s, fams[f], ctx, o);
+      EXPECT_EQ(plans[f].Detect(s, scores).score, a.score);
       EXPECT_EQ(a.detected, b.detected);
       EXPECT_EQ(a.score, b.score);
       EXPECT_EQ(a.p_value, b.p_value);
@@ -75,6 +79,39 @@ TEST(DetectionComb, PlanReusedAcrossSpectraEqualsDetectFamily) {
     }
   }
   EXPECT_GE(detected, 3);  // the inner-race comb in the three spectra that carry it
+}
+
+// The pairs the plans read: runs in order, disjoint, covering every line's window and far from
+// all of the spectrum; their scores those of the full computation, the rest 0.
+TEST(DetectionComb, ScoresOnTheScoredRunsOnly) {
+  const double shaft = 29.95, df = 0.1;
+  const auto fams = MakeFaultFamilies(ComputeFrequencies(CatalogBearing("6205"), shaft));
+  DetectionContext ctx;
+  ctx.shaft_hz = shaft;
+  DetectionOptions o;
+  const int n = 9201;
+  std::vector<CombSearch> plans;
+  for (const auto& f : fams) plans.emplace_back(f, ctx, o, df, n);
+  const auto runs = ScoredPairRuns(plans);
+  ASSERT_FALSE(runs.empty());
+  std::vector<unsigned char> in_run(n, 0);
+  int covered = 0;
+  for (size_t r = 0; r < runs.size(); ++r) {
+    ASSERT_LT(runs[r].first, runs[r].second);
+    if (r > 0) {
+      ASSERT_GT(runs[r].first, runs[r - 1].second);  // disjoint and merged
+    }
+    for (int b = runs[r].first; b < runs[r].second; ++b) in_run[b] = 1;
+    covered += runs[r].second - runs[r].first;
+  }
+  EXPECT_LT(covered, n * 3 / 4);
+  // The inner race's first harmonic at the nominal speed lies in a run.
+  EXPECT_TRUE(in_run[static_cast<int>(fams[1].fundamental_hz / df)]);
+  const auto s = NormalizeSpectrum(Spectrum(n, df, fams[1].fundamental_hz, shaft, 300.0, 4), df, o);
+  const auto all = PairScores(s, o);
+  const auto some = PairScores(s, o, runs);
+  ASSERT_EQ(all.size(), some.size());
+  for (size_t b = 0; b < all.size(); ++b) ASSERT_EQ(some[b], in_run[b] ? all[b] : 0.0) << b;
 }
 
 // A spectrum of another size is a programming error (SPALLKIT_CHECK), not a wrong answer.
