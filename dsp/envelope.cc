@@ -320,7 +320,7 @@ void EnvelopeAnalyzer::PackedSesPower(
     const double xr = er + wr * o_r - wi * o_i, xi = ei + wr * o_i + wi * o_r;
     power[k] = (xr * xr + xi * xi) * scale;
   };
-  // k < h in one loop without index cases (it vectorises), k = h on its own.
+  // k < h in one loop without index cases, k = h on its own.
   const int below_h = std::min(alpha_bins, h - 1);
   for (int k = 1; k <= below_h; ++k) bin(k, k, h - k);
   if (alpha_bins == h) bin(h, 0, 0);
