@@ -238,6 +238,15 @@ CombSearch::CombSearch(const FaultFamily& family,
   }
   combinations_ = 0;
   for (int g = 0; g < grid; ++g) combinations_ += changed[g];
+  for (int l = 0; l < nl; ++l) {
+    if (family.lines[l].half_order) continue;
+    const int* bin = bins_.data() + static_cast<size_t>(l) * grid;
+    for (int g = 0; g < grid;) {
+      const int b = bin[g], first = g;
+      while (g < grid && bin[g] == b) ++g;
+      if (b >= 0) runs_.push_back({first, g, b});
+    }
+  }
 
   // Nuisance combs and their reference lines: every line m * base up to the family's top line
   // that lies outside all of the family's search windows (where it cannot be a fault line).
@@ -353,14 +362,12 @@ FamilyDetection CombSearch::Detect(const NormalizedSpectrum& spectrum,
   FamilyDetection det;
   det.component = family.component;
 
-  // The comb score of grid point g sums its lines in line order.
+  // The comb score of grid point g sums its lines in line order (the runs are in line order, and
+  // one line's runs do not overlap).
   std::vector<double> score(grid, 0.0);
-  const double* ps = pair_scores.data();
-  for (int l = 0; l < nl; ++l) {
-    if (family_.lines[l].half_order) continue;  // not scored (see the plan)
-    const int* bin = bins_.data() + static_cast<size_t>(l) * grid;
-    for (int g = 0; g < grid; ++g)
-      if (bin[g] >= 0) score[g] += ps[bin[g]];
+  for (const GridRun& run : runs_) {
+    const double v = pair_scores[run.bin];
+    for (int g = run.first; g < run.last; ++g) score[g] += v;
   }
   const std::vector<int>& used = used_;
   const std::vector<double>& s_grid = s_grid_;

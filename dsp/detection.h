@@ -229,6 +229,13 @@ class CombSearch {
   std::vector<int> bins_;  // line-major, bins_[l * grid + g]: lower bin of the pair, -1 excluded
   std::vector<int> used_;  // lines used (not excluded) at each grid point
   int combinations_ = 0;   // distinct bin combinations along the grid
+  // bins_ as runs of grid points that read the same pair, in line order (scored lines only): the
+  // comb scores add one pair score over each run, a contiguous loop.
+  struct GridRun {
+    int first = 0, last = 0;  // grid points [first, last)
+    int bin = 0;              // lower bin of the pair
+  };
+  std::vector<GridRun> runs_;
 };
 
 // The runs [first, second) of pairs that any of plans (all of one size) reads, in order: the
