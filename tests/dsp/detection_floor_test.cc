@@ -55,5 +55,27 @@ TEST(DetectionFloor, TiesAndConstantSpectra) {
     ASSERT_DOUBLE_EQ(s.floor[i], 2.5 / std::numbers::ln2);
 }
 
+// With a shape, the floor is that of power / shape, multiplied back, and z is (power / shape)
+// divided by the flat floor: the same numbers as normalising the flattened spectrum by hand.
+TEST(DetectionFloor, ShapedFloorIsTheFlattenedSpectrumsFloorTimesTheShape) {
+  std::mt19937_64 rng(7);
+  std::exponential_distribution<double> e(1.0);
+  const int n = 8000;
+  std::vector<double> power(n), shape(n), flat(n);
+  for (int i = 0; i < n; ++i) {
+    shape[i] = std::max(0.1, 1.0 - i * 0.1 / 1000.0);  // a band SES's triangle, 1000 Hz band
+    power[i] = e(rng) * shape[i];
+    flat[i] = power[i] / shape[i];
+  }
+  const NormalizedSpectrum by_hand = NormalizeSpectrumWindow(flat, 0.1, 401);
+  const NormalizedSpectrum shaped = NormalizeSpectrumWindow(power, 0.1, 401, shape);
+  ASSERT_EQ(shaped.power, power);
+  for (int i = 0; i < n; ++i) {
+    ASSERT_EQ(shaped.floor[i], by_hand.floor[i] * shape[i]) << i;
+    ASSERT_EQ(shaped.z[i], by_hand.z[i]) << i;
+  }
+  EXPECT_EQ(shaped.effective_samples, by_hand.effective_samples);
+}
+
 }  // namespace
 }  // namespace spallkit::dsp
