@@ -221,6 +221,29 @@ HumpFit Refine(const CageAverage& avg, int z, const HumpFit& start, const CountF
   return f.chi2 <= start.chi2 ? f : start;
 }
 
+// v[(j, m), q] = per_line[(m, q)] e^{-i j phi_q} for k rollers, harmonics j = 1..nj and `lines`
+// sideband orders m, per_line[(m, q)] at m_index * k + q: feature B's basis, the rollers'
+// cage-angle terms of each line times their spin phase at each harmonic.
+std::vector<std::complex<double>> SpinPhaseBasis(const std::vector<std::complex<double>>& per_line,
+                                                 const std::vector<double>& phase,
+                                                 int k,
+                                                 int nj,
+                                                 int lines) {
+  SPALLKIT_CHECK(
+      static_cast<int>(phase.size()) >= k && per_line.size() >= static_cast<size_t>(lines) * k,
+      "sideband basis: " << phase.size() << " spin phases and " << per_line.size()
+                         << " line terms for " << k << " rollers");
+  std::vector<std::complex<double>> v(static_cast<size_t>(nj) * lines * k);
+  for (int q = 0; q < k; ++q) {  // e^{-i j phi} by powers: one sine pair per roller
+    const std::complex<double> e1 = std::polar(1.0, -phase[q]);
+    std::complex<double> e = e1;
+    for (int j = 1; j <= nj; ++j, e *= e1)
+      for (int m = 0; m < lines; ++m)
+        v[(static_cast<size_t>(j - 1) * lines + m) * k + q] = per_line[m * k + q] * e;
+  }
+  return v;
+}
+
 // Feature B's chi2 of a configuration for given spin phases of rollers 2..K (roller 1's is in
 // p_j) and hump offset delta: S_jm = p_j sum_k a_k e^{-i j phi_k} M_m e^{i m (2 pi s_k / Z -
 // theta_0 - delta)}, with p_j (complex, per harmonic) and a_k (real, >= 0, shared by the
@@ -233,20 +256,9 @@ double SidebandChi2At(const SpinSidebands& sb,
   const int k = static_cast<int>(f.slots.size());
   const int lines = 2 * sb.orders + 1;
   const int nj = sb.harmonics;
-  // Basis v[(j, m), q].
-  // v = em * e^{-i j phi}, em[(m, q)] = M_m e^{i m (2 pi s_q / Z - theta_0 - delta)}.
-  std::vector<std::complex<double>> ej(nj * k);
-  for (int q = 0; q < k; ++q) {  // e^{-i j phi} by powers: one sine pair per roller
-    const std::complex<double> e1 = std::polar(1.0, -phase[q]);
-    std::complex<double> e = e1;
-    for (int j = 1; j <= nj; ++j, e *= e1) ej[(j - 1) * k + q] = e;
-  }
-  std::vector<std::complex<double>> v(static_cast<size_t>(nj) * lines * k);
-  for (int j = 1; j <= nj; ++j)
-    for (int m = -sb.orders; m <= sb.orders; ++m)
-      for (int q = 0; q < k; ++q)
-        v[(static_cast<size_t>(j - 1) * lines + m + sb.orders) * k + q] =
-            em[(m + sb.orders) * k + q] * ej[(j - 1) * k + q];
+  // Basis v[(j, m), q] = em[(m, q)] e^{-i j phi_q}, em = M_m e^{i m (2 pi s_q / Z - theta_0 -
+  // delta)}.
+  const std::vector<std::complex<double>> v = SpinPhaseBasis(em, phase, k, nj, lines);
   std::vector<double> a(k,
                         1.0);  // equal strengths to start: feature A's are poor when humps overlap
   std::vector<std::complex<double>> p(nj, 0.0);
@@ -308,15 +320,8 @@ double SidebandChi2AtTwoPatterns(const SpinSidebands& sb,
                                  const std::vector<double>& phase) {
   const int orders = sb.orders, lines = 2 * orders + 1, nj = sb.harmonics;
   auto idx = [&](int j, int m) { return static_cast<size_t>(j - 1) * lines + m + orders; };
-  // v[(j, m), q] = e^{-i j phi_q} e^{i m (...)}.
-  std::vector<std::complex<double>> v(static_cast<size_t>(nj) * lines * k);
-  for (int q = 0; q < k; ++q) {
-    const std::complex<double> e1 = std::polar(1.0, -phase[q]);
-    std::complex<double> e = e1;
-    for (int j = 1; j <= nj; ++j, e *= e1)
-      for (int m = -orders; m <= orders; ++m)
-        v[idx(j, m) * k + q] = e * steer[(m + orders) * k + q];
-  }
+  // v[(j, m), q] = e^{i m (...)} e^{-i j phi_q}.
+  const std::vector<std::complex<double>> v = SpinPhaseBasis(steer, phase, k, nj, lines);
   // Second pattern: start from m^2 M_m with its M component removed (orthogonal to M).
   std::vector<double> n_pat(orders + 1);
   {
