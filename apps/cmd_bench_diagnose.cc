@@ -6,6 +6,7 @@
 #include <string>
 
 #include "apps/command.h"
+#include "apps/progress.h"
 #include "core/error.h"
 #include "dsp/diagnosis_benchmark.h"
 
@@ -30,8 +31,14 @@ int Run(const Opts& o) {
   options.threads = o.threads;
   std::string error;
   if (!options.IsValid(&error)) throw InputError("--threads: " + error);
-  const dsp::BenchmarkResult r =
-      dsp::RunDiagnosisBenchmark(dsp::ReadBenchmarkManifest(manifest), options);
+  dsp::BenchmarkResult r;
+  {
+    apps::TerminalProgress bar("bench diagnose", "records");
+    r = dsp::RunDiagnosisBenchmark(
+        dsp::ReadBenchmarkManifest(manifest),
+        options,
+        [&bar](int done, int total, const std::string& path) { bar.Update(done, total, path); });
+  }
   std::printf("%s\n", o.json ? r.ToJson(2).c_str() : r.BriefReport().c_str());
   return 0;
 }

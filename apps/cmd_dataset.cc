@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "apps/command.h"
+#include "apps/progress.h"
 #include "core/error.h"
 #include "study/dataset.h"
 #include "study/mpi_world.h"
@@ -35,18 +36,6 @@ std::pair<int, int> ParseShard(const std::string& text) {
   if (std::sscanf(text.c_str(), "%d/%d%c", &i, &n, &tail) != 2 || n < 1 || i < 0 || i >= n)
     throw spallkit::InputError("--shard '" + text + "': expected i/n with 0 <= i < n");
   return {i, n};
-}
-
-std::string Duration(double s) {
-  if (!std::isfinite(s)) return "?";
-  char buf[32];
-  if (s < 120)
-    std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else if (s < 7200)
-    std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
-  else
-    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
-  return buf;
 }
 
 int DryRun(const spallkit::study::Sweep& sweep) {
@@ -101,8 +90,8 @@ int Run(const Opts& o, spallkit::study::MpiWorld& world) {
                    p.total,
                    p.failed ? (", " + std::to_string(p.failed) + " failed").c_str() : "",
                    p.running,
-                   Duration(p.wall_seconds).c_str(),
-                   Duration(p.eta_seconds).c_str(),
+                   apps::FormatDuration(p.wall_seconds).c_str(),
+                   apps::FormatDuration(p.eta_seconds).c_str(),
                    p.last_case.c_str(),
                    tty ? "   " : "\n");
       std::fflush(stderr);

@@ -12,6 +12,7 @@
 #include "apps/command.h"
 #include "apps/identify_options.h"
 #include "apps/output_paths.h"
+#include "apps/progress.h"
 #include "core/atomic_file.h"
 #include "core/constants.h"
 #include "core/error.h"
@@ -85,7 +86,14 @@ int Run(const Opts& o) {
       for (auto& f : identify::CaseFiles(in)) files.push_back(f);
     }
   }
-  const identify::ValidationReport report = identify::ValidateOnFiles(files, vo);
+  identify::ValidationReport report;
+  {
+    apps::TerminalProgress bar("identify-check", "records");
+    vo.progress = [&bar](int done, int total, const std::string& path) {
+      bar.Update(done, total, path);
+    };
+    report = identify::ValidateOnFiles(files, vo);
+  }
   if (!o.csv.empty()) WriteFileAtomically(o.csv, report.ToCsv());
   std::printf("%s", report.Summary().c_str());
   return 0;

@@ -127,7 +127,8 @@ std::vector<LabelledRecord> ReadBenchmarkManifest(const std::string& manifest_pa
 }
 
 BenchmarkResult RunDiagnosisBenchmark(const std::vector<LabelledRecord>& records,
-                                      const DiagnoseOptions& options) {
+                                      const DiagnoseOptions& options,
+                                      const BenchmarkProgress& progress) {
   BenchmarkResult result;
   for (const LabelledRecord& rec : records) {
     BenchmarkRow row;
@@ -166,6 +167,8 @@ BenchmarkResult RunDiagnosisBenchmark(const std::vector<LabelledRecord>& records
     result.healthy_records += rec.truth == Verdict::kHealthy;
     result.total_seconds += row.seconds;
     result.rows.push_back(std::move(row));
+    if (progress)
+      progress(static_cast<int>(result.rows.size()), static_cast<int>(records.size()), rec.path);
   }
   return result;
 }

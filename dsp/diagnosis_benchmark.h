@@ -19,6 +19,7 @@
 //   std::puts(r.BriefReport().c_str());
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -74,9 +75,13 @@ struct BenchmarkResult {
   std::string ToJson(int indent = 2) const;
 };
 
+// Called after each record: records done, records in all, the record's path.
+using BenchmarkProgress = std::function<void(int done, int total, const std::string& path)>;
+
 // Diagnoses each record (a record that cannot be read or analysed is counted as refused, with
 // its message; the run continues).
 BenchmarkResult RunDiagnosisBenchmark(const std::vector<LabelledRecord>& records,
-                                      const DiagnoseOptions& options = {});
+                                      const DiagnoseOptions& options = {},
+                                      const BenchmarkProgress& progress = {});
 
 }  // namespace spallkit::dsp

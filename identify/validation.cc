@@ -228,6 +228,8 @@ ValidationReport ValidateOnFiles(const std::vector<std::string>& files,
       }
       report.records.push_back(std::move(r));
     }
+    if (options.progress)
+      options.progress(static_cast<int>(f + 1), static_cast<int>(files.size()), path);
   }
   return report;
 }

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -29,6 +30,8 @@ struct ValidationOptions {
   std::uint64_t seed = 1;  // noise: SplitMix64 stream per (seed, record, SNR), Box-Muller
   bool give_load = true;   // pass the scene's radial load to Identify (as `--load-n` does)
   IdentifyOptions identify;
+  // Called after each file (all its SNRs): files done, files in all, the file's path.
+  std::function<void(int done, int total, const std::string& path)> progress;
 
   bool IsValid(std::string* error) const;
 };

@@ -68,7 +68,13 @@ TEST(DiagnosisBenchmark, ConfusionMatrixOnASyntheticFolder) {
   EXPECT_EQ(set[0].truth, Verdict::kOuterRace);
   EXPECT_EQ(set[1].truth, Verdict::kHealthy);
   EXPECT_NEAR(set[0].shaft_hz, 1797 / 60.0, 1e-12);
-  const BenchmarkResult r = RunDiagnosisBenchmark(set);
+  std::vector<std::pair<int, int>> progress;  // (done, total) after each record, refused included
+  const BenchmarkResult r =
+      RunDiagnosisBenchmark(set, {}, [&](int done, int total, const std::string& path) {
+        progress.emplace_back(done, total);
+        EXPECT_EQ(path, set[done - 1].path);
+      });
+  EXPECT_EQ(progress, (std::vector<std::pair<int, int>>{{1, 3}, {2, 3}, {3, 3}}));
   const int outer = static_cast<int>(Verdict::kOuterRace);
   const int healthy = static_cast<int>(Verdict::kHealthy);
   EXPECT_EQ(r.confusion[outer][outer], 1);

@@ -138,8 +138,13 @@ TEST(SimulatedRecords, ValidationHarnessReadsTheTruthAndWritesOneRowPerSnr) {
   o.channel = "/signals/accel_z";
   o.snr_db = {std::numeric_limits<double>::infinity(), 10.0};
   o.identify.count.sensor_angle_rad = 0.5 * kPi;
+  std::vector<std::string> progress;  // "done/total path" per call: once per file, after its SNRs
+  o.progress = [&](int done, int total, const std::string& file) {
+    progress.push_back(std::to_string(done) + "/" + std::to_string(total) + " " + file);
+  };
   const ValidationReport report = ValidateOnFiles({path}, o);
   std::filesystem::remove(path);
+  EXPECT_EQ(progress, (std::vector<std::string>{"1/1 " + path}));
   ASSERT_EQ(report.records.size(), 2u);
   const ValidatedRecord& clean = report.records[0];
   EXPECT_EQ(clean.true_count, 1);
