@@ -11,6 +11,8 @@
 #include <exception>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <span>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -199,14 +201,18 @@ double SquaredEnvelopeMean(const EnvelopeAnalyzer& analyzer, int k1, int k2) {
 // shifted, not clipped, and sits where the triangle is lower (W = 401 bins of a 1 s record in a
 // 500 Hz band: the lowest lines' floor 1.6x too low). So the floor is estimated on
 // P / (1 - alpha / B) and multiplied back; z is unchanged by the multiplication.
+std::vector<double> BandSesShape(size_t bins, double df, double band_width_hz) {
+  std::vector<double> shape(bins);
+  for (size_t k = 0; k < bins; ++k) shape[k] = std::max(0.1, 1.0 - k * df / band_width_hz);
+  return shape;
+}
+
 NormalizedSpectrum NormalizeBandSes(const std::vector<double>& power,
                                     double df,
-                                    double band_width_hz,
+                                    std::span<const double> shape,
                                     const DetectionOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw InputError("detection: " + error);
-  std::vector<double> shape(power.size());
-  for (size_t k = 0; k < power.size(); ++k) shape[k] = std::max(0.1, 1.0 - k * df / band_width_hz);
   return NormalizeSpectrumWindow(power, df, options.floor_window_bins, shape);
 }
 
@@ -569,6 +575,21 @@ BandResult SearchCandidateBands(const EnvelopeAnalyzer& analyzer,
     }
     return found;
   };
+  // The SES shapes (BandSesShape) by size and band width: a kurtogram row's bands share them.
+  std::deque<std::tuple<size_t, double, std::vector<double>>> shapes;
+  auto shape_for = [&](size_t bins, double width_hz) -> const std::vector<double>* {
+    const std::vector<double>* found = nullptr;
+#pragma omp critical(spallkit_diagnose_ses_shapes)
+    {
+      for (const auto& [b, w, v] : shapes)
+        if (b == bins && w == width_hz) found = &v;
+      if (!found) {
+        shapes.emplace_back(bins, width_hz, BandSesShape(bins, df, width_hz));
+        found = &std::get<2>(shapes.back());
+      }
+    }
+    return found;
+  };
   // A candidate is exactly its kurtogram node: the node's half-open bin range [lo, hi) (the
   // Hz band [low, high] would also take bin `high` when it falls on a bin), so its SES comes
   // from the node's own squared envelope and its mean from the same bins.
@@ -599,7 +620,7 @@ BandResult SearchCandidateBands(const EnvelopeAnalyzer& analyzer,
         tree.envelope_gain2,
         max_alpha,
         workspace);
-    r->normalized = NormalizeBandSes(power, df, band.width_hz(), dopt);
+    r->normalized = NormalizeBandSes(power, df, *shape_for(power.size(), band.width_hz()), dopt);
     int lo = 0, hi = 0;
     node_bins(node, &lo, &hi);
     r->normalized.envelope_mean = SquaredEnvelopeMean(analyzer, lo, hi);
@@ -751,8 +772,9 @@ void ConfirmOuterRaceOnPrewhitened(const Record& record,
     const double df = whitened.resolution_hz();
     const double max_alpha =
         std::min(d->band.width_hz(), alpha_need + (options.floor_window_bins / 2 + 2) * df);
-    NormalizedSpectrum in_band = NormalizeBandSes(
-        whitened.SesPowerFast(d->band, max_alpha, nullptr), df, d->band.width_hz(), dopt);
+    const std::vector<double> power = whitened.SesPowerFast(d->band, max_alpha, nullptr);
+    NormalizedSpectrum in_band =
+        NormalizeBandSes(power, df, BandSesShape(power.size(), df, d->band.width_hz()), dopt);
     in_band.envelope_mean = SquaredEnvelopeMean(whitened,
                                                 static_cast<int>(std::ceil(d->band.low_hz / df)),
                                                 static_cast<int>(std::ceil(d->band.high_hz / df)));
