@@ -27,6 +27,7 @@ struct Opts {
   std::string snr = "inf";
   unsigned long long seed = 1;
   bool no_load = false;
+  int workers = 1;
   std::string csv;
   double sensor_angle_deg = 0.0;
   CLI::Option* sensor_option = nullptr;
@@ -69,6 +70,7 @@ int Run(const Opts& o) {
   vo.snr_db = ParseSnrList(o.snr);
   vo.seed = o.seed;
   vo.give_load = !o.no_load;
+  vo.workers = o.workers;
   if (o.sensor_option && o.sensor_option->count() > 0)
     vo.identify.count.sensor_angle_rad = o.sensor_angle_deg * kPi / 180.0;
   o.statements.Apply(&vo.identify);
@@ -119,6 +121,11 @@ spallkit::apps::Register reg(
                          o->sensor_angle_deg,
                          "the channel's direction from the load line, deg (as spall identify)");
       sub.add_flag("--no-load", o->no_load, "do not give Identify the scene's radial load");
+      sub.add_option("--workers",
+                     o->workers,
+                     "files analysed side by side, one thread each (default 1; the report is the "
+                     "same for any number)")
+          ->check(CLI::Range(1, 256));
       o->statements.Add(sub);
       sub.add_option("--csv", o->csv, "write one row per record and SNR there");
       return [o] { return Run(*o); };

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "core/constants.h"
 #include "core/error.h"
@@ -67,7 +70,13 @@ double BandPower(const dsp::EnvelopeAnalyzer& a, double low_hz, double high_hz) 
   return 2.0 * p / (n * n);
 }
 
-double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+// CPU time of the calling thread (a record's analysis runs on one thread; the workers run
+// records side by side).
+double CpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 }  // namespace
 
@@ -81,6 +90,7 @@ bool ValidationOptions::IsValid(std::string* error) const {
   for (double s : snr_db)
     if (std::isnan(s) || s == -std::numeric_limits<double>::infinity())
       return fail("validation: an SNR must be a number or +inf");
+  if (!(workers >= 1 && workers <= 256)) return fail("validation: workers must be in [1, 256]");
   return identify.IsValid(error);
 }
 
@@ -100,137 +110,175 @@ std::vector<std::string> CaseFiles(const std::string& folder) {
   return files;
 }
 
+namespace {
+
+// One file at every SNR of the options; f is the file's index (it seeds the noise).
+std::vector<ValidatedRecord> ValidateFile(const std::string& path,
+                                          size_t f,
+                                          const ValidationOptions& options) {
+  std::vector<ValidatedRecord> out;
+  const auto text = h5::File::OpenReadOnly(path).ReadStringAttribute("/", "scene");
+  if (!text) throw InputError(path + ": no `scene` attribute (not a spall simulate output)");
+  const sim::Scene scene = sim::ParseScene(*text, path + ":scene");
+  RecordOptions ro;
+  ro.channel = options.channel;
+  Record clean = ReadRecord(path, ro);
+  if (!DropStart(&clean, options.skip_s) ||
+      clean.samples.size() <= dsp::EnvelopeAnalyzer::kMinSamples)
+    throw InputError(path + ": record shorter than skip_s");
+
+  const BearingGeometry& g = scene.geometry.bearing;
+  const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
+  dsp::DiagnoseOptions dopt;
+  dopt.threads = 1;
+  IdentifyOptions io = options.identify;
+  io.diametral_clearance_m = scene.geometry.diametral_clearance_m;
+  io.roller_length_m = scene.geometry.thickness_m;
+  if (options.give_load) io.radial_load_n = scene.operation.radial_load_n;
+
+  ValidatedRecord truth;
+  truth.file = path;
+  truth.true_count = static_cast<int>(scene.defects.size());
+  std::vector<int> rollers;
+  for (const auto& d : scene.defects) rollers.push_back(d.roller);
+  if (!rollers.empty()) {
+    const int r0 = *std::min_element(rollers.begin(), rollers.end());
+    for (int& r : rollers) r -= r0;
+    std::sort(rollers.begin(), rollers.end());
+    truth.true_slots = CanonicalSlots(rollers, g.num_elements);
+    truth.true_width_m = scene.defects.front().width_m;
+  }
+  truth.speed_rpm = shaft_hz * 60.0;
+  truth.load_n = scene.operation.radial_load_n;
+  truth.record_s = clean.duration_s();
+
+  // The clean record's band defines the SNR (the band the analysis would use on it).
+  const dsp::Diagnosis clean_d = dsp::Diagnose(clean, g, shaft_hz, dopt);
+  const dsp::EnvelopeAnalyzer analyzer(clean.samples, clean.sample_rate_hz);
+  const double band_power = BandPower(analyzer, clean_d.band.low_hz, clean_d.band.high_hz);
+  const double band_fraction = clean_d.band.width_hz() / (0.5 * clean.sample_rate_hz);
+
+  for (size_t s = 0; s < options.snr_db.size(); ++s) {
+    const double snr = options.snr_db[s];
+    Record noisy = clean;
+    if (std::isfinite(snr)) {
+      const double sigma = std::sqrt(band_power / std::pow(10.0, snr / 10.0) / band_fraction);
+      NormalStream noise(options.seed * 0x100000001b3ULL + f * 1000003ULL + s * 7919ULL);
+      for (double& x : noisy.samples) x += sigma * noise.Next();
+    }
+    ValidatedRecord r = truth;
+    r.snr_db = snr;
+    const double t0 = CpuSeconds();
+    const dsp::Diagnosis d = std::isfinite(snr) ? dsp::Diagnose(noisy, g, shaft_hz, dopt) : clean_d;
+    const Identification id = Identify(noisy, g, shaft_hz, d, io);
+    r.cpu_s = CpuSeconds() - t0;
+    r.verdict = dsp::VerdictName(d.verdict);
+    r.count_stated = id.count_identifiable;
+    r.count = id.count;
+    r.probabilities = id.probabilities;
+    auto argmax = [](const std::vector<double>& p, int* k, double* v) {
+      if (p.empty()) return;
+      *k = static_cast<int>(std::max_element(p.begin(), p.end()) - p.begin());
+      *v = p[*k];
+    };
+    argmax(id.probabilities_cage, &r.count_cage, &r.p_cage);
+    argmax(id.probabilities_sidebands, &r.count_sidebands, &r.p_sidebands);
+    r.chi2_scale_cage = id.count_fit.chi2_scale;
+    r.chi2_scale_sidebands = id.count_fit.chi2_scale_sidebands;
+    r.log_evidence_cage = id.count_fit.log_evidence_cage;
+    r.log_evidence_sidebands = id.count_fit.log_evidence_sidebands;
+    if (!id.count_fit.best.empty()) {
+      const HumpShape& shape = id.count_fit.best[id.count_fit.MostProbable()].shape;
+      r.hump_exponent = shape.exponent;
+      r.hump_edge_gain = shape.edge_gain;
+      r.hump_smear_deg = shape.smear_rad * 180.0 / kPi;
+    }
+    if (id.count_identifiable) r.count_probability = id.probabilities[id.count];
+    r.count_at_least = id.count_at_least;
+    r.count_at_least_probability = id.count_at_least_probability;
+    if (id.count_identifiable && id.count == r.true_count) {
+      std::vector<int> slots;
+      for (double p : id.positions_deg)
+        slots.push_back(static_cast<int>(std::lround(p * g.num_elements / 360.0)));
+      const std::vector<int> stated = CanonicalSlots(slots, g.num_elements);
+      r.positions_right = stated == r.true_slots;
+      std::vector<int> mirror;
+      for (int t : r.true_slots) mirror.push_back((g.num_elements - t) % g.num_elements);
+      std::sort(mirror.begin(), mirror.end());
+      r.positions_mirrored = !r.positions_right && stated == CanonicalSlots(mirror, g.num_elements);
+    }
+    r.width_stated = id.width_identifiable;
+    r.width_m = id.width_m;
+    r.width_low_m = id.width_low_m;
+    r.width_high_m = id.width_high_m;
+    if (id.width_fit.usable) {
+      r.delay_s = id.width_fit.best.delay_s;
+      r.delay_low_s = id.width_fit.delay_low_s;
+      r.delay_high_s = id.width_fit.delay_high_s;
+      r.delay_significance = id.width_fit.delay_power_significance;
+      r.pair_power_ratio = id.width_fit.best.PairPowerRatio();
+    }
+    if (id.width_fit_exclusive.usable) {
+      r.exclusive_delay_s = id.width_fit_exclusive.best.delay_s;
+      r.exclusive_pair_power_ratio = id.width_fit_exclusive.best.PairPowerRatio();
+      r.exclusive_significance = id.width_fit_exclusive.delay_power_significance;
+    }
+    r.width_from_exclusive_zone = id.width_from_exclusive_zone;
+    if (r.true_count > 0 && id.spin_hz > 0) {
+      r.true_delay_s = 2.0 * std::asin(std::min(1.0, r.true_width_m / g.element_diameter_m)) /
+                       (2.0 * kPi * id.spin_hz);
+      if (id.width_fit.usable)
+        r.true_release_delay_s = DelayOfWidth(r.true_width_m, g.element_diameter_m, id, io);
+    }
+    for (size_t i = 0; i < id.reasons.size(); ++i) {
+      if (i) r.reasons += "; ";
+      r.reasons += id.reasons[i];
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+}  // namespace
+
 ValidationReport ValidateOnFiles(const std::vector<std::string>& files,
                                  const ValidationOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
+  // Files are independent (the noise is seeded by the file's index), so workers take them in
+  // turn and the report keeps the files' order: the same report for any number of workers.
+  const size_t n = files.size();
+  std::vector<std::vector<ValidatedRecord>> per_file(n);
+  std::vector<std::exception_ptr> errors(n);
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex mutex;  // guards done and the progress callback
+  int done = 0;
+  auto work = [&] {
+    for (size_t f = next++; f < n && !failed; f = next++) {
+      try {
+        per_file[f] = ValidateFile(files[f], f, options);
+        if (options.progress) {
+          std::lock_guard<std::mutex> lock(mutex);
+          options.progress(++done, static_cast<int>(n), files[f]);
+        }
+      } catch (...) {
+        errors[f] = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  const int workers =
+      static_cast<int>(std::min<size_t>(std::max(1, options.workers), std::max<size_t>(n, 1)));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < workers; ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
   ValidationReport report;
-  for (size_t f = 0; f < files.size(); ++f) {
-    const std::string& path = files[f];
-    const auto text = h5::File::OpenReadOnly(path).ReadStringAttribute("/", "scene");
-    if (!text) throw InputError(path + ": no `scene` attribute (not a spall simulate output)");
-    const sim::Scene scene = sim::ParseScene(*text, path + ":scene");
-    RecordOptions ro;
-    ro.channel = options.channel;
-    Record clean = ReadRecord(path, ro);
-    if (!DropStart(&clean, options.skip_s) ||
-        clean.samples.size() <= dsp::EnvelopeAnalyzer::kMinSamples)
-      throw InputError(path + ": record shorter than skip_s");
-
-    const BearingGeometry& g = scene.geometry.bearing;
-    const double shaft_hz = scene.operation.inner_ring_speed_rad_s / (2.0 * kPi);
-    dsp::DiagnoseOptions dopt;
-    dopt.threads = 1;
-    IdentifyOptions io = options.identify;
-    io.diametral_clearance_m = scene.geometry.diametral_clearance_m;
-    io.roller_length_m = scene.geometry.thickness_m;
-    if (options.give_load) io.radial_load_n = scene.operation.radial_load_n;
-
-    ValidatedRecord truth;
-    truth.file = path;
-    truth.true_count = static_cast<int>(scene.defects.size());
-    std::vector<int> rollers;
-    for (const auto& d : scene.defects) rollers.push_back(d.roller);
-    if (!rollers.empty()) {
-      const int r0 = *std::min_element(rollers.begin(), rollers.end());
-      for (int& r : rollers) r -= r0;
-      std::sort(rollers.begin(), rollers.end());
-      truth.true_slots = CanonicalSlots(rollers, g.num_elements);
-      truth.true_width_m = scene.defects.front().width_m;
-    }
-    truth.speed_rpm = shaft_hz * 60.0;
-    truth.load_n = scene.operation.radial_load_n;
-    truth.record_s = clean.duration_s();
-
-    // The clean record's band defines the SNR (the band the analysis would use on it).
-    const dsp::Diagnosis clean_d = dsp::Diagnose(clean, g, shaft_hz, dopt);
-    const dsp::EnvelopeAnalyzer analyzer(clean.samples, clean.sample_rate_hz);
-    const double band_power = BandPower(analyzer, clean_d.band.low_hz, clean_d.band.high_hz);
-    const double band_fraction = clean_d.band.width_hz() / (0.5 * clean.sample_rate_hz);
-
-    for (size_t s = 0; s < options.snr_db.size(); ++s) {
-      const double snr = options.snr_db[s];
-      Record noisy = clean;
-      if (std::isfinite(snr)) {
-        const double sigma = std::sqrt(band_power / std::pow(10.0, snr / 10.0) / band_fraction);
-        NormalStream noise(options.seed * 0x100000001b3ULL + f * 1000003ULL + s * 7919ULL);
-        for (double& x : noisy.samples) x += sigma * noise.Next();
-      }
-      ValidatedRecord r = truth;
-      r.snr_db = snr;
-      const double t0 = CpuSeconds();
-      const dsp::Diagnosis d =
-          std::isfinite(snr) ? dsp::Diagnose(noisy, g, shaft_hz, dopt) : clean_d;
-      const Identification id = Identify(noisy, g, shaft_hz, d, io);
-      r.cpu_s = CpuSeconds() - t0;
-      r.verdict = dsp::VerdictName(d.verdict);
-      r.count_stated = id.count_identifiable;
-      r.count = id.count;
-      r.probabilities = id.probabilities;
-      auto argmax = [](const std::vector<double>& p, int* k, double* v) {
-        if (p.empty()) return;
-        *k = static_cast<int>(std::max_element(p.begin(), p.end()) - p.begin());
-        *v = p[*k];
-      };
-      argmax(id.probabilities_cage, &r.count_cage, &r.p_cage);
-      argmax(id.probabilities_sidebands, &r.count_sidebands, &r.p_sidebands);
-      r.chi2_scale_cage = id.count_fit.chi2_scale;
-      r.chi2_scale_sidebands = id.count_fit.chi2_scale_sidebands;
-      r.log_evidence_cage = id.count_fit.log_evidence_cage;
-      r.log_evidence_sidebands = id.count_fit.log_evidence_sidebands;
-      if (!id.count_fit.best.empty()) {
-        const HumpShape& shape = id.count_fit.best[id.count_fit.MostProbable()].shape;
-        r.hump_exponent = shape.exponent;
-        r.hump_edge_gain = shape.edge_gain;
-        r.hump_smear_deg = shape.smear_rad * 180.0 / kPi;
-      }
-      if (id.count_identifiable) r.count_probability = id.probabilities[id.count];
-      r.count_at_least = id.count_at_least;
-      r.count_at_least_probability = id.count_at_least_probability;
-      if (id.count_identifiable && id.count == r.true_count) {
-        std::vector<int> slots;
-        for (double p : id.positions_deg)
-          slots.push_back(static_cast<int>(std::lround(p * g.num_elements / 360.0)));
-        const std::vector<int> stated = CanonicalSlots(slots, g.num_elements);
-        r.positions_right = stated == r.true_slots;
-        std::vector<int> mirror;
-        for (int t : r.true_slots) mirror.push_back((g.num_elements - t) % g.num_elements);
-        std::sort(mirror.begin(), mirror.end());
-        r.positions_mirrored =
-            !r.positions_right && stated == CanonicalSlots(mirror, g.num_elements);
-      }
-      r.width_stated = id.width_identifiable;
-      r.width_m = id.width_m;
-      r.width_low_m = id.width_low_m;
-      r.width_high_m = id.width_high_m;
-      if (id.width_fit.usable) {
-        r.delay_s = id.width_fit.best.delay_s;
-        r.delay_low_s = id.width_fit.delay_low_s;
-        r.delay_high_s = id.width_fit.delay_high_s;
-        r.delay_significance = id.width_fit.delay_power_significance;
-        r.pair_power_ratio = id.width_fit.best.PairPowerRatio();
-      }
-      if (id.width_fit_exclusive.usable) {
-        r.exclusive_delay_s = id.width_fit_exclusive.best.delay_s;
-        r.exclusive_pair_power_ratio = id.width_fit_exclusive.best.PairPowerRatio();
-        r.exclusive_significance = id.width_fit_exclusive.delay_power_significance;
-      }
-      r.width_from_exclusive_zone = id.width_from_exclusive_zone;
-      if (r.true_count > 0 && id.spin_hz > 0) {
-        r.true_delay_s = 2.0 * std::asin(std::min(1.0, r.true_width_m / g.element_diameter_m)) /
-                         (2.0 * kPi * id.spin_hz);
-        if (id.width_fit.usable)
-          r.true_release_delay_s = DelayOfWidth(r.true_width_m, g.element_diameter_m, id, io);
-      }
-      for (size_t i = 0; i < id.reasons.size(); ++i) {
-        if (i) r.reasons += "; ";
-        r.reasons += id.reasons[i];
-      }
-      report.records.push_back(std::move(r));
-    }
-    if (options.progress)
-      options.progress(static_cast<int>(f + 1), static_cast<int>(files.size()), path);
-  }
+  for (auto& records : per_file)
+    for (auto& r : records) report.records.push_back(std::move(r));
   return report;
 }
 

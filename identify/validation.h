@@ -30,7 +30,11 @@ struct ValidationOptions {
   std::uint64_t seed = 1;  // noise: SplitMix64 stream per (seed, record, SNR), Box-Muller
   bool give_load = true;   // pass the scene's radial load to Identify (as `--load-n` does)
   IdentifyOptions identify;
-  // Called after each file (all its SNRs): files done, files in all, the file's path.
+  // Files analysed side by side (threads; each file's records on one thread). The report is the
+  // same for any number.
+  int workers = 1;
+  // Called after each file (all its SNRs), from one worker at a time: files done, files in all,
+  // the file's path.
   std::function<void(int done, int total, const std::string& path)> progress;
 
   bool IsValid(std::string* error) const;

@@ -15,7 +15,8 @@
 # traction"): the sweep files are copied to OUT with that change. SPALLKIT_BASE_SET adds one
 # line to every sweep's [base.set] (copied likewise), e.g.
 # SPALLKIT_BASE_SET='"bearing.cage_radial_play_mm" = 0.1' (docs/BEARING_MODEL.md, "Cage radial
-# play"). About 8 min of generation and 5 min of checks on 2 cores. Uses build/apps/spall
+# play"). About 8 min of generation and 3 min of checks on 2 cores (both run one file per
+# core). Uses build/apps/spall
 # (SPALLKIT_SPALL overrides).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -53,7 +54,8 @@ for set in $SETS; do
   echo "== check identify-$set" >&2
   # shellcheck disable=SC2086  # the extra arguments are words
   "$SPALL" identify-check "$OUT/$set" --channel /signals/accel_z --sensor-angle-deg 90 \
-    --snr-db inf,10,0 --csv "$OUT/$set.csv" ${SPALLKIT_CHECK_ARGS:-} >"$OUT/$set.check.txt"
+    --snr-db inf,10,0 --workers "$WORKERS" --csv "$OUT/$set.csv" ${SPALLKIT_CHECK_ARGS:-} \
+    >"$OUT/$set.check.txt"
 done
 printf '%-12s %-6s %-22s %s\n' set SNR "count right/wrong/ref" "widths stated (within 15 %)"
 for set in $SETS; do

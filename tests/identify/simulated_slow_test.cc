@@ -143,8 +143,31 @@ TEST(SimulatedRecords, ValidationHarnessReadsTheTruthAndWritesOneRowPerSnr) {
     progress.push_back(std::to_string(done) + "/" + std::to_string(total) + " " + file);
   };
   const ValidationReport report = ValidateOnFiles({path}, o);
-  std::filesystem::remove(path);
   EXPECT_EQ(progress, (std::vector<std::string>{"1/1 " + path}));
+  {
+    // Two workers on two files give the report of one worker, in the files' order (the copy's
+    // noise has its own seed, so its rows differ from the original's).
+    const std::string copy = path + ".copy.h5";
+    std::filesystem::copy_file(path, copy, std::filesystem::copy_options::overwrite_existing);
+    ValidationOptions one = o;
+    one.progress = nullptr;
+    one.snr_db = {10.0};
+    ValidationOptions two = one;
+    two.workers = 2;
+    auto csv_without_cpu = [](ValidationReport r) {
+      for (auto& rec : r.records) rec.cpu_s = 0.0;
+      return r.ToCsv();
+    };
+    const ValidationReport a = ValidateOnFiles({path, copy}, one);
+    const ValidationReport b = ValidateOnFiles({path, copy}, two);
+    std::filesystem::remove(copy);
+    ASSERT_EQ(b.records.size(), 2u);
+    EXPECT_EQ(b.records[0].file, path);
+    EXPECT_EQ(b.records[1].file, copy);
+    EXPECT_EQ(csv_without_cpu(a), csv_without_cpu(b));
+    EXPECT_GT(b.records[0].cpu_s, 0.0);
+  }
+  std::filesystem::remove(path);
   ASSERT_EQ(report.records.size(), 2u);
   const ValidatedRecord& clean = report.records[0];
   EXPECT_EQ(clean.true_count, 1);
