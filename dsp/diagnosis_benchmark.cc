@@ -236,16 +236,18 @@ std::string BenchmarkResult::BriefReport() const {
     out += "\n";
   }
   const int analysed = static_cast<int>(rows.size()) - refused;
+  const double signal_s = SignalSeconds();
   std::snprintf(buf,
                 sizeof buf,
                 "correct %d of %d analysed (%d refused); false alarms %d of %d healthy; "
-                "%.1f ms per record\n",
+                "%.1f ms per record, %.2f ms per second of signal\n",
                 correct,
                 analysed,
                 refused,
                 false_alarms,
                 healthy_records,
-                analysed > 0 ? 1e3 * total_seconds / analysed : 0.0);
+                analysed > 0 ? 1e3 * total_seconds / analysed : 0.0,
+                signal_s > 0 ? 1e3 * total_seconds / signal_s : 0.0);
   out += buf;
   return out;
 }
@@ -291,7 +293,15 @@ std::string BenchmarkResult::ToJson(int indent) const {
   j["false_alarms"] = false_alarms;
   j["healthy_records"] = healthy_records;
   j["seconds_total"] = total_seconds;
+  j["signal_seconds_total"] = SignalSeconds();
   return j.dump(indent);
+}
+
+double BenchmarkResult::SignalSeconds() const {
+  double total = 0.0;
+  for (const auto& r : rows)
+    if (r.verdict) total += r.duration_s;
+  return total;
 }
 
 }  // namespace spallkit::dsp

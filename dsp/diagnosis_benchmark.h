@@ -69,8 +69,10 @@ struct BenchmarkResult {
   int correct = 0;
   int false_alarms = 0;  // healthy truth, fault verdict
   int healthy_records = 0;
-  double total_seconds = 0.0;
+  double total_seconds = 0.0;  // analysis time (wall), every record
 
+  // Seconds of signal of the analysed (not refused) records.
+  double SignalSeconds() const;
   std::string BriefReport() const;
   std::string ToJson(int indent = 2) const;
 };

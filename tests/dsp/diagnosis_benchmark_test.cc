@@ -88,6 +88,10 @@ TEST(DiagnosisBenchmark, ConfusionMatrixOnASyntheticFolder) {
   EXPECT_EQ(j["confusion"][outer][outer].get<int>(), 1);
   EXPECT_EQ(j["records"][0]["verdict"].get<std::string>(), "outer_race");
   EXPECT_NE(r.BriefReport().find("confusion matrix"), std::string::npos);
+  // The cost per second of signal counts the two analysed 2 s records, not the refused one.
+  EXPECT_NEAR(r.SignalSeconds(), 4.0, 1e-3);
+  EXPECT_NEAR(j["signal_seconds_total"].get<double>(), 4.0, 1e-3);
+  EXPECT_NE(r.BriefReport().find("ms per second of signal"), std::string::npos) << r.BriefReport();
 }
 
 TEST(DiagnosisBenchmark, ManifestErrorsNameTheEntryAndKey) {
