@@ -2,6 +2,7 @@
 // truth (dsp/diagnosis_benchmark.h; manifest format in docs/DIAGNOSIS.md).
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -34,10 +35,9 @@ int Run(const Opts& o) {
   dsp::BenchmarkResult r;
   {
     apps::TerminalProgress bar("bench diagnose", "records");
-    r = dsp::RunDiagnosisBenchmark(
-        dsp::ReadBenchmarkManifest(manifest),
-        options,
-        [&bar](int done, int total, const std::string& path) { bar.Update(done, total, path); });
+    r = dsp::RunDiagnosisBenchmark(dsp::ReadBenchmarkManifest(manifest),
+                                   options,
+                                   std::bind_front(&apps::TerminalProgress::Update, &bar));
   }
   std::printf("%s\n", o.json ? r.ToJson(2).c_str() : r.BriefReport().c_str());
   return 0;

@@ -3,6 +3,7 @@
 // the stated probabilities (docs/IDENTIFY.md, "Validation on simulated records").
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -91,9 +92,7 @@ int Run(const Opts& o) {
   identify::ValidationReport report;
   {
     apps::TerminalProgress bar("identify-check", "records");
-    vo.progress = [&bar](int done, int total, const std::string& path) {
-      bar.Update(done, total, path);
-    };
+    vo.progress = std::bind_front(&apps::TerminalProgress::Update, &bar);
     report = identify::ValidateOnFiles(files, vo);
   }
   if (!o.csv.empty()) WriteFileAtomically(o.csv, report.ToCsv());

@@ -20,10 +20,10 @@ std::string FormatDuration(double s) {
   return buf;
 }
 
-TerminalProgress::TerminalProgress(std::string label, std::string unit, bool enabled)
+TerminalProgress::TerminalProgress(std::string label, std::string unit)
     : label_(std::move(label)),
       unit_(std::move(unit)),
-      enabled_(enabled && ::isatty(STDERR_FILENO)),
+      enabled_(::isatty(STDERR_FILENO)),
       start_(std::chrono::steady_clock::now()) {}
 
 TerminalProgress::~TerminalProgress() {

@@ -12,8 +12,8 @@ std::string FormatDuration(double seconds);
 
 class TerminalProgress {
  public:
-  // enabled: false turns it off (e.g. --quiet); it is also off when stderr is not a terminal.
-  TerminalProgress(std::string label, std::string unit, bool enabled = true);
+  // Off when stderr is not a terminal.
+  TerminalProgress(std::string label, std::string unit);
   ~TerminalProgress();  // ends the line if anything was printed
   TerminalProgress(const TerminalProgress&) = delete;
   TerminalProgress& operator=(const TerminalProgress&) = delete;

@@ -88,19 +88,6 @@ inline double PairScoreOf(double z0, double z1, double n_eff, double cap) {
 
 SPALLKIT_MULTIVERSION
 std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
-                               const DetectionOptions& options) {
-  const int nbins = static_cast<int>(spectrum.z.size());
-  const int count = std::max(0, nbins - 1);
-  std::vector<double> out(count);
-  const double n_eff = spectrum.effective_samples;
-  const double cap = std::min(options.max_line_score, -std::log(1e-300));
-  const double* z = spectrum.z.data();
-  for (int i = 0; i < count; ++i) out[i] = PairScoreOf(z[i], z[i + 1], n_eff, cap);
-  return out;
-}
-
-SPALLKIT_MULTIVERSION
-std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
                                const DetectionOptions& options,
                                std::span<const std::pair<int, int>> runs) {
   const int nbins = static_cast<int>(spectrum.z.size());
@@ -115,6 +102,12 @@ std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
     for (int i = first; i < last; ++i) out[i] = PairScoreOf(z[i], z[i + 1], n_eff, cap);
   }
   return out;
+}
+
+std::vector<double> PairScores(const NormalizedSpectrum& spectrum,
+                               const DetectionOptions& options) {
+  const std::pair<int, int> every_pair{0, std::max(0, static_cast<int>(spectrum.z.size()) - 1)};
+  return PairScores(spectrum, options, {&every_pair, 1});
 }
 
 std::vector<std::pair<int, int>> ScoredPairRuns(std::span<const CombSearch> plans) {

@@ -12,7 +12,6 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <span>
-#include <tuple>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -535,6 +534,21 @@ DetectionContext MakeDetectionContext(double shaft_hz, const Diagnosis& d) {
 // (below); returns the band with the strongest family evidence, or the kurtogram's choice among
 // the candidates when no comb is significant anywhere. Sets d->searched_bands and
 // d->band_selection.
+// The entry of *cache that `matches`, made by `make` and added when there is none. Serialised:
+// the candidate bands run in parallel and share the caches; a deque keeps references valid while
+// another thread adds an entry.
+template <class T, class Matches, class Make>
+const T& FindOrMake(std::deque<T>* cache, const Matches& matches, const Make& make) {
+  const T* found = nullptr;
+#pragma omp critical(spallkit_diagnose_band_caches)
+  {
+    for (const T& e : *cache)
+      if (matches(e)) found = &e;
+    if (!found) found = &cache->emplace_back(make());
+  }
+  return *found;
+}
+
 BandResult SearchCandidateBands(const EnvelopeAnalyzer& analyzer,
                                 const BandTree& tree,
                                 const std::vector<KurtogramNode>& candidates,
@@ -550,45 +564,40 @@ BandResult SearchCandidateBands(const EnvelopeAnalyzer& analyzer,
   // Comb plans (dsp/detection.h, CombSearch): the speed grid, the bins each line visits and the
   // exclusions depend on the spectrum's size only, which is the same for (nearly) every band, so
   // they are made once per size instead of once per band and family, with the runs of pairs
-  // they read (the only pair scores computed). A deque keeps references valid while another
-  // thread adds a size; lookups and additions are serialised.
+  // they read (the only pair scores computed).
   struct CombPlans {
     int bins = 0;
     std::vector<CombSearch> plans;
     std::vector<std::pair<int, int>> scored_runs;
   };
   std::deque<CombPlans> comb_plans;
-  auto plans_for = [&](int bins) -> const CombPlans* {
-    const CombPlans* found = nullptr;
-#pragma omp critical(spallkit_diagnose_comb_plans)
-    {
-      for (const auto& p : comb_plans)
-        if (p.bins == bins) found = &p;
-      if (!found) {
-        CombPlans c;
-        c.bins = bins;
-        for (const auto& family : d->families) c.plans.emplace_back(family, ctx, dopt, df, bins);
-        c.scored_runs = ScoredPairRuns(c.plans);
-        comb_plans.push_back(std::move(c));
-        found = &comb_plans.back();
-      }
-    }
-    return found;
+  auto plans_for = [&](int bins) -> const CombPlans& {
+    return FindOrMake(
+        &comb_plans,
+        [&](const CombPlans& p) { return p.bins == bins; },
+        [&] {
+          CombPlans c;
+          c.bins = bins;
+          for (const auto& family : d->families) c.plans.emplace_back(family, ctx, dopt, df, bins);
+          c.scored_runs = ScoredPairRuns(c.plans);
+          return c;
+        });
   };
   // The SES shapes (BandSesShape) by size and band width: a kurtogram row's bands share them.
-  std::deque<std::tuple<size_t, double, std::vector<double>>> shapes;
-  auto shape_for = [&](size_t bins, double width_hz) -> const std::vector<double>* {
-    const std::vector<double>* found = nullptr;
-#pragma omp critical(spallkit_diagnose_ses_shapes)
-    {
-      for (const auto& [b, w, v] : shapes)
-        if (b == bins && w == width_hz) found = &v;
-      if (!found) {
-        shapes.emplace_back(bins, width_hz, BandSesShape(bins, df, width_hz));
-        found = &std::get<2>(shapes.back());
-      }
-    }
-    return found;
+  struct SesShape {
+    size_t bins = 0;
+    double width_hz = 0.0;
+    std::vector<double> shape;
+  };
+  std::deque<SesShape> shapes;
+  auto shape_for = [&](size_t bins, double width_hz) -> const std::vector<double>& {
+    return FindOrMake(
+               &shapes,
+               [&](const SesShape& e) { return e.bins == bins && e.width_hz == width_hz; },
+               [&] {
+                 return SesShape{bins, width_hz, BandSesShape(bins, df, width_hz)};
+               })
+        .shape;
   };
   // A candidate is exactly its kurtogram node: the node's half-open bin range [lo, hi) (the
   // Hz band [low, high] would also take bin `high` when it falls on a bin), so its SES comes
@@ -620,13 +629,13 @@ BandResult SearchCandidateBands(const EnvelopeAnalyzer& analyzer,
         tree.envelope_gain2,
         max_alpha,
         workspace);
-    r->normalized = NormalizeBandSes(power, df, *shape_for(power.size(), band.width_hz()), dopt);
+    r->normalized = NormalizeBandSes(power, df, shape_for(power.size(), band.width_hz()), dopt);
     int lo = 0, hi = 0;
     node_bins(node, &lo, &hi);
     r->normalized.envelope_mean = SquaredEnvelopeMean(analyzer, lo, hi);
     // Each family on its own here; which family explains which line is decided jointly on the
     // chosen band (dsp/explain.h).
-    const CombPlans& plans = *plans_for(static_cast<int>(r->normalized.z.size()));
+    const CombPlans& plans = plans_for(static_cast<int>(r->normalized.z.size()));
     const std::vector<double> pair_scores = PairScores(r->normalized, dopt, plans.scored_runs);
     for (const CombSearch& plan : plans.plans)
       r->detections.push_back(plan.Detect(r->normalized, pair_scores));

@@ -770,27 +770,29 @@ double SidebandChi2(const SpinSidebands& sb,
   if (k >= 3) shapes = {plain};  // three and more humps fix their shape poorly anyway
   for (const HumpShape& shape : shapes) {
     const std::vector<double> mm = HumpFourier(shape, sb.orders);
-    std::vector<std::complex<double>> em(static_cast<size_t>(2 * sb.orders + 1) * k);
-    std::vector<std::complex<double>> steer(em.size());
+    // Per line and roller: steer = e^{i m (2 pi s_q / Z - theta_0 - delta)}, the second-pattern
+    // model's term, or em = M_m steer, the one-pattern model's (each model reads only its own).
+    std::vector<std::complex<double>> per_line(static_cast<size_t>(2 * sb.orders + 1) * k);
     auto at = [&](double delta) {
       for (int m = -sb.orders; m <= sb.orders; ++m)
         for (int q = 0; q < k; ++q) {
-          steer[(m + sb.orders) * k + q] =
+          const std::complex<double> steer =
               std::polar(1.0, m * (2.0 * kPi * f.slots[q] / z - f.theta0_rad - delta));
-          em[(m + sb.orders) * k + q] = mm[std::abs(m)] * steer[(m + sb.orders) * k + q];
+          per_line[(m + sb.orders) * k + q] = second_pattern ? steer : mm[std::abs(m)] * steer;
         }
-      const double c =
-          second_pattern
-              ? SearchSpinPhases(
-                    k,
-                    [&](const std::vector<double>& ph) {
-                      return SidebandChi2AtTwoPatterns(sb, k, steer, mm, ph);
-                    },
-                    &phase)
-              : SearchSpinPhases(
-                    k,
-                    [&](const std::vector<double>& ph) { return SidebandChi2At(sb, f, em, ph); },
-                    &phase);
+      const double c = second_pattern
+                           ? SearchSpinPhases(
+                                 k,
+                                 [&](const std::vector<double>& ph) {
+                                   return SidebandChi2AtTwoPatterns(sb, k, per_line, mm, ph);
+                                 },
+                                 &phase)
+                           : SearchSpinPhases(
+                                 k,
+                                 [&](const std::vector<double>& ph) {
+                                   return SidebandChi2At(sb, f, per_line, ph);
+                                 },
+                                 &phase);
       if (c < best_phase_chi2) best_phase_chi2 = c, best_phase = phase;
       return c;
     };

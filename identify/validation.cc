@@ -26,6 +26,11 @@ namespace {
 
 // Width classes of the summary's per-width line (m).
 constexpr double kWidthClassM = 0.5e-3;
+constexpr double kWidthTolerance = 0.15;  // a width "within 15 %" of the truth
+
+double RelativeWidthError(const ValidatedRecord& r) {
+  return std::abs(r.width_m - r.true_width_m) / r.true_width_m;
+}
 
 // SplitMix64 (portable: the same noise with every standard library) and Box-Muller.
 class NormalStream {
@@ -366,9 +371,9 @@ std::string ValidationReport::Summary() const {
       ++with_spall;
       if (!r->width_stated) continue;
       ++stated;
-      const double e = std::abs(r->width_m - r->true_width_m) / r->true_width_m;
+      const double e = RelativeWidthError(*r);
       errors.push_back(e);
-      within += e <= 0.15;
+      within += e <= kWidthTolerance;
       covered += r->width_low_m <= r->true_width_m && r->true_width_m <= r->width_high_m;
     }
     os << "  width stated on " << stated << " of " << with_spall << " spalled records";
@@ -389,7 +394,7 @@ std::string ValidationReport::Summary() const {
       ++c[0];
       c[1] += r->verdict != "rolling_element";
       c[2] += r->count_stated && r->count == r->true_count;
-      c[3] += r->width_stated && std::abs(r->width_m - r->true_width_m) <= 0.15 * r->true_width_m;
+      c[3] += r->width_stated && RelativeWidthError(*r) <= kWidthTolerance;
     }
     if (!by_width.empty()) {
       os << "  by true width (spalled; no roller signature, count right, width within 15 %):";

@@ -19,22 +19,11 @@ roller b's strikes after roller a's is (psi_a - psi_b) / (2 pi f_rel) modulo the
 times, with its range; and each defective roller's mean relative spin rate. Needs numpy and h5py.
 """
 import argparse
-import re
 import sys
+import tomllib
 
 import h5py
 import numpy as np
-
-
-def defective_rollers(scene_text):
-    """The rollers of the scene's [[defects]] tables, in order."""
-    rollers = []
-    for block in re.split(r"^\[\[defects\]\]\s*$", scene_text, flags=re.M)[1:]:
-        block = re.split(r"^\[", block, maxsplit=1, flags=re.M)[0]
-        m = re.search(r"^roller\s*=\s*(\d+)", block, flags=re.M)
-        if m:
-            rollers.append(int(m.group(1)))
-    return rollers
 
 
 def main():
@@ -56,7 +45,7 @@ def main():
         orbit = f["rollers/orbit_angle"][:]
         scene = f.attrs["scene"]
         scene = scene.decode() if isinstance(scene, bytes) else scene
-    rollers = defective_rollers(scene)
+    rollers = [d["roller"] for d in tomllib.loads(scene).get("defects", [])]
     if not rollers:
         sys.exit(f"{args.run_h5}: the scene has no defective roller")
     keep = t >= args.from_s

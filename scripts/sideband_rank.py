@@ -20,20 +20,12 @@ h5py.
 """
 import argparse
 import json
-import re
 import subprocess
 import sys
+import tomllib
 
 import h5py
 import numpy as np
-
-
-def scene_value(scene, table, key):
-    block = re.split(r"^\[" + re.escape(table) + r"\]\s*$", scene, flags=re.M)
-    if len(block) < 2:
-        return None
-    m = re.search(r"^" + key + r"\s*=\s*([0-9.eE+-]+)", block[1].split("\n[")[0], flags=re.M)
-    return float(m.group(1)) if m else None
 
 
 def sideband_lines(path, channel, sensor_deg, spall, harmonics=4, orders=4):
@@ -42,8 +34,8 @@ def sideband_lines(path, channel, sensor_deg, spall, harmonics=4, orders=4):
         scene = scene.decode() if isinstance(scene, bytes) else scene
         x = f[channel][:]
         t = f["time"][:]
-    rpm = scene_value(scene, "operation", "speed_rpm")
-    load = scene_value(scene, "operation", "radial_load_n")
+    operation = tomllib.loads(scene)["operation"]
+    rpm, load = operation["speed_rpm"], operation["radial_load_n"]
     out = subprocess.run([spall, "identify", path, "--bearing", "N205EM", "--rpm", str(rpm),
                           "--channel", channel, "--sensor-angle-deg", str(sensor_deg),
                           "--load-n", str(load), "--from-s", "0.05", "--json"],
